@@ -1,0 +1,291 @@
+// skein: the command line. Thin: parses arguments, calls the library, prints what happened.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "cuda/device.hpp"
+#include "render/stitch_view.hpp"
+#include "skein/config.hpp"
+#include "stitchmesh/edits.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/project.hpp"
+#include "stitchmesh/tessellation.hpp"
+
+namespace fs = std::filesystem;
+using namespace skein;
+using nlohmann::json;
+
+namespace {
+
+class Stopwatch {
+public:
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+
+private:
+  std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
+};
+
+bool is_project(const fs::path& path) { return path.extension() == ".skein"; }
+
+/// A mesh file or the input mesh of a project.
+mesh::InputMesh load_input(const fs::path& path) {
+  if (!is_project(path)) return mesh::load_mesh(path);
+  auto project = mesh::read_project(path);
+  if (!project.input) throw Error(path.string(), "", "the project holds no input mesh");
+  return std::move(*project.input);
+}
+
+/// Labels stored in `path` for `mesh`: the same faces, corner for corner (vertex ids may differ).
+mesh::Labeling labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
+  auto project = mesh::read_project(path);
+  if (!project.input || !project.labels) throw Error(path.string(), "", "holds no labels (it needs 'input-mesh' and 'labels' sections)");
+  const auto& stored = *project.input;
+  const auto differ = [&](const std::string& what) {
+    throw Error(path.string(), "", "its labels were made for a different mesh than " + mesh.source() + " (" + what + ")");
+  };
+  if (stored.num_faces() != mesh.num_faces()) differ(std::to_string(stored.num_faces()) + " faces, not " + std::to_string(mesh.num_faces()));
+  const double tolerance = 1e-6 * mesh.bounding_diagonal();
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    if (stored.face(f).size() != mesh.face(f).size()) differ("face " + std::to_string(f) + " has another number of corners");
+    for (size_t k = 0; k < mesh.face(f).size(); ++k)
+      if ((stored.point(stored.face(f)[k]) - mesh.point(mesh.face(f)[k])).norm() > tolerance)
+        differ("face " + std::to_string(f) + " corner " + std::to_string(k) + " is elsewhere");
+  }
+  return std::move(*project.labels);
+}
+
+json stats_json(const mesh::StitchMesh& sm) {
+  const auto s = mesh::stitch_stats(sm);
+  return {{"kind", "stitch-mesh"}, {"faces", s.faces},         {"vertices", s.vertices},
+          {"rows", s.rows},         {"increases", s.increases}, {"decreases", s.decreases},
+          {"cable_edges", s.cable_edges}, {"stitch_types", s.stitch_types}, {"invalid_faces", s.invalid_faces},
+          {"valid", s.valid}};
+}
+
+json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels) {
+  const auto report = mesh::validate_labels(m, labels);
+  json problems = json::array(), mismatches = json::array();
+  for (const auto& [f, why] : report.face_problems) problems.push_back({{"face", f}, {"reason", why}});
+  for (const auto& [e, why] : report.mismatches) mismatches.push_back({{"edge", e}, {"reason", why}});
+  return {{"rows", labels.rows}, {"invalid_faces", report.face_problems.size()}, {"face_problems", problems},
+          {"mismatched_edges", report.mismatches.size()}, {"mismatches", mismatches}, {"valid", report.valid()}};
+}
+
+json mesh_json(const mesh::InputMesh& m) {
+  int border = 0;
+  std::map<std::string, int> sizes;
+  for (int e = 0; e < m.num_edges(); ++e) border += m.is_border(e);
+  for (const auto& f : m.faces()) ++sizes[std::to_string(f.size()) + "-gons"];
+  return {{"kind", "mesh"}, {"vertices", m.num_vertices()}, {"faces", m.num_faces()}, {"edges", m.num_edges()},
+          {"border_edges", border}, {"face_sizes", sizes}};
+}
+
+void write_json(const json& j, const std::string& path) {
+  if (path == "-") {
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color) {
+  Stopwatch t;
+  render::write_png(render::draw(render::stitch_polygons(sm, color), render::View{}), path);
+  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
+}
+
+render::ColorBy parse_color(const std::string& s) { return s == "type" ? render::ColorBy::StitchType : render::ColorBy::Row; }
+
+/// "A:B" (inclusive) or "A" → row ids.
+std::pair<int, int> parse_rows(const std::string& s) {
+  int a = 0, b = 0;
+  char colon = 0, tail = 0;
+  const int n = std::sscanf(s.c_str(), "%d%c%d%c", &a, &colon, &b, &tail);
+  if (n == 1) return {a, a};
+  if (n == 3 && colon == ':' && a >= 0 && b >= a) return {a, b};
+  throw Error("", "--rows '" + s + "'", "expected a row or an inclusive range A:B with 0 <= A <= B");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"skein: polygon mesh → knitted garment with yarn-level detail (Yuksel et al. 2012 stitch meshes)"};
+  app.set_version_flag("--version", SKEIN_VERSION);
+  app.require_subcommand(1);
+  bool quiet = false;
+  app.add_flag("-q,--quiet", quiet, "print warnings and errors only");
+
+  // skein stitch
+  auto* stitch = app.add_subcommand("stitch", "label a mesh and tessellate it into a stitch mesh (.skein)");
+  std::string stitch_in, stitch_out, stitch_labels, stitch_png, stitch_png_types, stitch_stats;
+  bool auto_label = false;
+  int start_edge = -1;
+  mesh::StitchSize size;
+  bool height_given = false;
+  stitch->add_option("MESH", stitch_in, "mesh (OBJ, PLY, glTF, FBX, ... or a .skein project)")->required();
+  auto* auto_opt = stitch->add_flag("--auto-label", auto_label, "label every row automatically from the lowest border edge");
+  auto* labels_opt = stitch->add_option("--labels", stitch_labels, "use the labels stored in this .skein file");
+  auto_opt->excludes(labels_opt);
+  stitch->add_option("--start-edge", start_edge, "with --auto-label: the border edge to start from")->needs(auto_opt);
+  stitch->add_option("--stitch-size", size.width, "stitch width along the course [mm]")->capture_default_str();
+  stitch->add_option("--stitch-height", size.height, "stitch height along the wale [mm] (default: the width × 5/6)");
+  stitch->add_option("-o,--output", stitch_out, "project to write (.skein)")->required();
+  stitch->add_option("--png", stitch_png, "picture of the stitch mesh coloured by row");
+  stitch->add_option("--png-types", stitch_png_types, "picture of the stitch mesh coloured by stitch type");
+  stitch->add_option("--stats", stitch_stats, "write the stitch-mesh statistics as JSON here ('-' for stdout)");
+
+  // skein label
+  auto* label = app.add_subcommand("label", "label a mesh's knitting rows and save the labels (.skein)");
+  std::string label_in, label_out;
+  int label_start = -1;
+  std::vector<int> flips;
+  label->add_option("MESH", label_in, "mesh or .skein project")->required();
+  label->add_option("--start-edge", label_start, "border edge to start from (default: the lowest)");
+  label->add_option("--flip-row", flips, "flip these rows' wale direction after labeling");
+  label->add_option("-o,--output", label_out, "labels to write (.skein)")->required();
+
+  // skein edit
+  auto* edit = app.add_subcommand("edit", "change stitch types of a stitch mesh: fills over rows, single faces");
+  std::string edit_in, edit_out, edit_fill, edit_rows, edit_type, edit_png;
+  std::vector<int> edit_faces;
+  edit->add_option("PROJECT", edit_in, ".skein project with a stitch mesh")->required();
+  edit->add_option("--fill", edit_fill, "stockinette, reverse, garter, seed, moss, rib or ribKxP");
+  edit->add_option("--rows", edit_rows, "rows A:B the fill covers (default: all)");
+  edit->add_option("--set-type", edit_type, "stitch type for --faces");
+  edit->add_option("--faces", edit_faces, "face ids for --set-type");
+  edit->add_option("--png-types", edit_png, "picture coloured by stitch type");
+  edit->add_option("-o,--output", edit_out, "project to write")->required();
+
+  // skein stats
+  auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling or stitch mesh");
+  std::string stats_in;
+  bool stats_json_flag = false;
+  stats->add_option("FILE", stats_in, "mesh or .skein project")->required();
+  stats->add_flag("--json", stats_json_flag, "print JSON (default: text)");
+
+  // skein render
+  auto* render_cmd = app.add_subcommand("render", "draw a project's stitch mesh to PNG");
+  std::string render_in, render_out, render_color = "row";
+  render_cmd->add_option("PROJECT", render_in, ".skein project with a stitch mesh")->required();
+  render_cmd->add_option("-o,--output", render_out, "PNG to write")->required();
+  render_cmd->add_option("--color", render_color, "row or type")->check(CLI::IsMember({"row", "type"}));
+
+  // skein devices
+  auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
+
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_pattern("[%H:%M:%S.%e] %^%l%$ %v");
+  spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::info);
+  height_given = stitch->count("--stitch-height") > 0;
+
+  try {
+    if (*stitch) {
+      if (!auto_label && stitch_labels.empty()) throw Error("", "skein stitch", "give --auto-label or --labels FILE");
+      if (!height_given) size.height = size.width * 5.0 / 6.0;
+      size.validate();
+      for (const auto& p : {stitch_out, stitch_png, stitch_png_types})
+        if (!p.empty()) check_writable(p);
+      Stopwatch total, t;
+      mesh::Project project;
+      project.stitch_size = size;
+      project.input = load_input(stitch_in);
+      const auto& m = *project.input;
+      spdlog::info("loaded {}: {} vertices, {} faces ({:.3f} s)", stitch_in, m.num_vertices(), m.num_faces(), t.seconds());
+      t = {};
+      project.labels = auto_label ? mesh::auto_label(m, start_edge >= 0 ? start_edge : mesh::default_start_edge(m)) : labels_for(m, stitch_labels);
+      const auto report = mesh::validate_labels(m, *project.labels);
+      spdlog::info("labeled {} rows ({:.3f} s); {} edges with opposite wale directions on their two sides", project.labels->rows, t.seconds(),
+                   report.mismatches.size());
+      for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", stitch_in, f, why);
+      t = {};
+      project.values = mesh::initial_values(m, *project.labels, size);
+      project.stitch = mesh::tessellate(m, *project.labels, *project.values);
+      const auto s = mesh::stitch_stats(*project.stitch);
+      spdlog::info("tessellated: {} stitch faces, {} rows, {} increases, {} decreases ({:.3f} s)", s.faces, s.rows, s.increases, s.decreases,
+                   t.seconds());
+      if (!s.valid) spdlog::error("the stitch mesh breaks rules:\n{}", mesh::validate(*project.stitch).summary());
+      mesh::write_project(project, stitch_out);
+      spdlog::info("wrote {} (total {:.2f} s)", stitch_out, total.seconds());
+      if (!stitch_png.empty()) render_stitch_mesh(*project.stitch, stitch_png, render::ColorBy::Row);
+      if (!stitch_png_types.empty()) render_stitch_mesh(*project.stitch, stitch_png_types, render::ColorBy::StitchType);
+      if (!stitch_stats.empty()) write_json(stats_json(*project.stitch), stitch_stats);
+      return s.valid ? 0 : 1;
+    }
+    if (*label) {
+      check_writable(label_out);
+      mesh::Project project;
+      project.input = load_input(label_in);
+      const auto& m = *project.input;
+      project.labels = mesh::auto_label(m, label_start >= 0 ? label_start : mesh::default_start_edge(m));
+      for (int r : flips) {
+        if (r < 0 || r >= project.labels->rows) throw Error("", "--flip-row " + std::to_string(r), "no such row (there are " + std::to_string(project.labels->rows) + ")");
+        mesh::flip_row(*project.labels, r);
+      }
+      const auto report = mesh::validate_labels(m, *project.labels);
+      for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", label_in, f, why);
+      for (const auto& [e, why] : report.mismatches) spdlog::warn("{}: edge {}: {}", label_in, e, why);
+      mesh::write_project(project, label_out);
+      spdlog::info("{} rows; wrote {}", project.labels->rows, label_out);
+      return report.valid() ? 0 : 1;
+    }
+    if (*edit) {
+      check_writable(edit_out);
+      auto project = mesh::read_project(edit_in);
+      if (!project.stitch) throw Error(edit_in, "", "holds no stitch mesh; run 'skein stitch' first");
+      auto& sm = *project.stitch;
+      if (!edit_fill.empty()) {
+        const auto pattern = mesh::parse_fill(edit_fill);
+        const auto [a, b] = edit_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(edit_rows);
+        std::vector<int> faces;
+        for (int f = 0; f < static_cast<int>(sm.faces.size()); ++f)
+          if (sm.faces[f].row >= a && sm.faces[f].row <= b) faces.push_back(f);
+        sm = mesh::fill(sm, faces, pattern);
+        spdlog::info("filled {} faces with {}", faces.size(), edit_fill);
+      }
+      if (!edit_type.empty()) sm = mesh::set_stitch_type(sm, edit_faces, edit_type);
+      mesh::write_project(project, edit_out);
+      if (!edit_png.empty()) render_stitch_mesh(sm, edit_png, render::ColorBy::StitchType);
+      return 0;
+    }
+    if (*stats) {
+      json j;
+      if (is_project(stats_in)) {
+        const auto project = mesh::read_project(stats_in);
+        if (project.stitch) j = stats_json(*project.stitch);
+        else if (project.labels) j = {{"kind", "labeled-mesh"}, {"mesh", mesh_json(*project.input)}, {"labels", labels_json(*project.input, *project.labels)}};
+        else if (project.input) j = mesh_json(*project.input);
+      } else {
+        j = mesh_json(mesh::load_mesh(stats_in));
+      }
+      if (stats_json_flag) {
+        std::cout << j.dump(2) << "\n";
+      } else {
+        for (const auto& [k, v] : j.items()) std::cout << k << ": " << v.dump() << "\n";
+      }
+      return 0;
+    }
+    if (*render_cmd) {
+      const auto project = mesh::read_project(render_in);
+      if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
+      render_stitch_mesh(*project.stitch, render_out, parse_color(render_color));
+      return 0;
+    }
+    if (*devices) {
+      const auto q = cuda::query_devices();
+      std::cout << cuda::describe(q) << "\n";
+      return 0;
+    }
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,211 @@
+#include "stitchmesh/input_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <unordered_map>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <Eigen/Geometry>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+namespace skein::mesh {
+namespace {
+
+std::uint64_t edge_key(int u, int v) {
+  if (u > v) std::swap(u, v);
+  return (static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(v);
+}
+
+std::string vertex_list(const std::vector<int>& f) {
+  std::string s;
+  for (int v : f) s += (s.empty() ? "" : " ") + std::to_string(v);
+  return s;
+}
+
+/// Newell's vector: twice the area vector of a (possibly non-planar) polygon.
+Eigen::Vector3d area_vector(const std::vector<Eigen::Vector3d>& p, const std::vector<int>& f) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < f.size(); ++i) n += p[f[i]].cross(p[f[(i + 1) % f.size()]]);
+  return n;
+}
+
+}  // namespace
+
+InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vector<int>> faces, std::string source)
+    : m_source(std::move(source)), m_points(std::move(points)), m_faces(std::move(faces)) {
+  const auto fail = [&](const std::string& place, const std::string& rule) { throw Error(m_source, place, rule); };
+  if (m_faces.empty()) fail("", "the mesh has no faces (points or lines only?)");
+  const int nv = num_vertices();
+  for (int v = 0; v < nv; ++v)
+    if (!m_points[v].allFinite()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "coordinates (%g, %g, %g) are not finite numbers", m_points[v].x(), m_points[v].y(), m_points[v].z());
+      fail("vertex " + std::to_string(v), buf);
+    }
+
+  Eigen::AlignedBox3d box;
+  for (const auto& p : m_points) box.extend(p);
+  const double diag = box.diagonal().norm();
+
+  for (int f = 0; f < num_faces(); ++f) {
+    const auto& face = m_faces[f];
+    const std::string place = "face " + std::to_string(f);
+    if (face.size() < 3) fail(place, "has " + std::to_string(face.size()) + " vertices; a face needs at least 3");
+    for (size_t i = 0; i < face.size(); ++i) {
+      if (face[i] < 0 || face[i] >= nv) fail(place, "refers to vertex " + std::to_string(face[i]) + ", but there are " + std::to_string(nv));
+      for (size_t j = 0; j < i; ++j)
+        if (face[i] == face[j]) fail(place, "uses vertex " + std::to_string(face[i]) + " twice (vertices " + vertex_list(face) + ")");
+    }
+    if (area_vector(m_points, face).norm() * 0.5 <= 1e-12 * diag * diag)
+      fail(place, "has zero area (vertices " + vertex_list(face) + ")");
+  }
+
+  // Edges: each used at most twice, in opposite directions.
+  auto& edge_of = m_edge_of;
+  edge_of.reserve(m_faces.size() * 4);
+  m_face_edges.resize(m_faces.size());
+  for (int f = 0; f < num_faces(); ++f) {
+    const auto& face = m_faces[f];
+    for (size_t k = 0; k < face.size(); ++k) {
+      const int u = face[k], v = face[(k + 1) % face.size()];
+      auto [it, inserted] = edge_of.try_emplace(edge_key(u, v), num_edges());
+      if (inserted) {
+        m_edge_vertices.emplace_back(std::min(u, v), std::max(u, v));
+        m_edge_uses.emplace_back();
+      }
+      auto& uses = m_edge_uses[it->second];
+      const std::string place = "edge " + std::to_string(u) + "-" + std::to_string(v);
+      if (uses.size() == 2)
+        fail(place, "is shared by more than two faces (faces " + std::to_string(uses[0].face) + ", " + std::to_string(uses[1].face) + ", " +
+                        std::to_string(f) + "); the mesh must be manifold");
+      if (uses.size() == 1) {
+        const auto& other = m_faces[uses[0].face];
+        if (other[uses[0].local] == u)
+          fail(place, "faces " + std::to_string(uses[0].face) + " and " + std::to_string(f) +
+                          " run along it in the same direction; the faces must be oriented consistently");
+      }
+      uses.push_back({f, static_cast<int>(k)});
+      m_face_edges[f].push_back(it->second);
+    }
+  }
+
+  // OpenMesh refuses faces that make a vertex non-manifold (two fans meeting at one vertex).
+  std::vector<PolyMesh::VertexHandle> vh(nv);
+  for (int v = 0; v < nv; ++v) vh[v] = m_mesh.add_vertex(PolyMesh::Point(m_points[v].x(), m_points[v].y(), m_points[v].z()));
+  std::vector<PolyMesh::VertexHandle> loop;
+  for (int f = 0; f < num_faces(); ++f) {
+    loop.clear();
+    for (int v : m_faces[f]) loop.push_back(vh[v]);
+    if (!m_mesh.add_face(loop).is_valid())
+      fail("face " + std::to_string(f), "makes a vertex non-manifold (vertices " + vertex_list(m_faces[f]) + ")");
+  }
+}
+
+int InputMesh::find_edge(int u, int v) const {
+  const auto it = m_edge_of.find(edge_key(u, v));
+  return it == m_edge_of.end() ? -1 : it->second;
+}
+
+double InputMesh::edge_length(int e) const {
+  const auto [a, b] = m_edge_vertices[e];
+  return (m_points[a] - m_points[b]).norm();
+}
+
+double InputMesh::bounding_diagonal() const {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : m_points) box.extend(p);
+  return box.diagonal().norm();
+}
+
+InputMesh load_mesh(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(name, "", "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(name, "", "not a regular file");
+  {
+    std::FILE* probe = std::fopen(path.c_str(), "rb");
+    if (!probe) throw Error(name, "", "cannot be opened for reading");
+    std::fclose(probe);
+  }
+
+  Assimp::Importer importer;
+  // Drop everything but positions so that welding joins corners that differ only in normals or UVs.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                                          aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                                          aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS);
+  // Never aiProcess_Triangulate: quads and other polygons must survive.
+  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_RemoveComponent | aiProcess_JoinIdenticalVertices |
+                                                              aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
+  if (!scene) throw Error(name, "", std::string("cannot read it as a mesh: ") + importer.GetErrorString());
+
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<int>> faces;
+  // Weld identical positions across all meshes of the scene (assimp joins only within one mesh).
+  std::map<std::array<double, 3>, int> index_of;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    std::vector<int> remap(mesh->mNumVertices);
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D& p = mesh->mVertices[v];
+      const std::array<double, 3> key{p.x, p.y, p.z};
+      const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+      if (!finite) {  // never weld NaNs: keep the vertex so that the error names it
+        remap[v] = static_cast<int>(points.size());
+        points.emplace_back(p.x, p.y, p.z);
+        continue;
+      }
+      auto [it, inserted] = index_of.try_emplace(key, static_cast<int>(points.size()));
+      if (inserted) points.emplace_back(p.x, p.y, p.z);
+      remap[v] = it->second;
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices < 3) continue;  // points and lines are not surface
+      std::vector<int> loop;
+      loop.reserve(face.mNumIndices);
+      for (unsigned i = 0; i < face.mNumIndices; ++i) {
+        if (face.mIndices[i] >= mesh->mNumVertices) throw Error(name, "face " + std::to_string(faces.size()), "refers to a vertex that does not exist");
+        loop.push_back(remap[face.mIndices[i]]);
+      }
+      faces.push_back(std::move(loop));
+    }
+  }
+
+  // Drop vertices no face uses (OBJ files often carry them); keep the order of the rest.
+  std::vector<int> used(points.size(), -1);
+  for (const auto& f : faces)
+    for (int v : f) used[v] = 0;
+  std::vector<Eigen::Vector3d> kept;
+  for (size_t v = 0; v < points.size(); ++v)
+    if (used[v] == 0) {
+      used[v] = static_cast<int>(kept.size());
+      kept.push_back(points[v]);
+    }
+  for (auto& f : faces)
+    for (int& v : f) v = used[v];
+  return InputMesh(std::move(kept), std::move(faces), name);
+}
+
+void write_obj(const InputMesh& mesh, const std::filesystem::path& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# skein input mesh: " << mesh.num_vertices() << " vertices, " << mesh.num_faces() << " faces\n";
+    char buf[128];
+    for (const auto& p : mesh.points()) {
+      std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
+      out << buf;
+    }
+    for (const auto& f : mesh.faces()) {
+      out << 'f';
+      for (int v : f) out << ' ' << v + 1;
+      out << '\n';
+    }
+  });
+}
+
+}  // namespace skein::mesh

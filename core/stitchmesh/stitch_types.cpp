@@ -1,0 +1,38 @@
+#include "stitchmesh/stitch_types.hpp"
+
+#include <algorithm>
+
+namespace skein::mesh {
+
+const std::vector<StitchType>& stitch_types() {
+  static const std::vector<StitchType> types = [] {
+    std::vector<StitchType> t;
+    const auto add = [&](std::initializer_list<const char*> names, int bottom, int top) {
+      for (const char* n : names) t.push_back({n, bottom, top});
+    };
+    add({"k", "p", "y", "k+1", "k-1", "p+1", "p-1", "y+1", "y-1", "x", "s", "sk"}, 1, 1);
+    add({"kp", "ky", "yk", "py", "yp"}, 1, 2);
+    add({"kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}, 1, 3);
+    add({"d12k", "d21k", "d12p", "d21p"}, 2, 1);
+    add({"d123k", "d132k", "d213k", "d231k", "d312k", "d321k", "d123p", "d132p", "d213p", "d231p", "d312p", "d321p"}, 3, 1);
+    return t;
+  }();
+  return types;
+}
+
+const StitchType* find_stitch_type(std::string_view name) {
+  const auto& t = stitch_types();
+  const auto it = std::find_if(t.begin(), t.end(), [&](const StitchType& s) { return s.name == name; });
+  return it == t.end() ? nullptr : &*it;
+}
+
+std::string default_stitch_type(int bottom, int top) {
+  if (bottom == 1 && top == 1) return "k";
+  if (bottom == 1 && top == 2) return "kp";
+  if (bottom == 1 && top == 3) return "kpk";
+  if (bottom == 2 && top == 1) return "d12k";
+  if (bottom == 3 && top == 1) return "d123k";
+  return "";
+}
+
+}  // namespace skein::mesh
