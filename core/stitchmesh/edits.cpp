@@ -287,16 +287,18 @@ StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fil
   // Columns: position along the row, ring rows turned so their first face sits above the previous row's.
   auto rows = faces_by_row(mesh);
   const EdgeTable table = edge_table(mesh);
-  const auto face_above = [&](int f) {
+  const auto across = [&](int f, int k) {
     const auto& face = mesh.faces[f];
-    const auto it = table.find(edge_key(face.vertex(face.size() - 2), face.vertex(face.size() - 1)));
+    const auto it = table.find(edge_key(face.vertex(k), face.vertex(k + 1)));
     if (it == table.end() || it->second.count != 2) return -1;
     return it->second.use[0].face == f ? it->second.use[1].face : it->second.use[0].face;
   };
+  const auto face_above = [&](int f) { return across(f, mesh.faces[f].size() - 2); };
   std::vector<int> column(mesh.faces.size(), 0);
   for (size_t r = 0; r < rows.size(); ++r) {
     auto& row = rows[r];
-    if (r > 0 && !rows[r - 1].empty() && !row.empty()) {
+    const bool ring = !row.empty() && across(row.front(), mesh.faces[row.front()].left_wale()) == row.back();
+    if (ring && r > 0 && !rows[r - 1].empty()) {
       const int above = face_above(rows[r - 1].front());
       const auto it = std::find(row.begin(), row.end(), above);
       if (it != row.end()) std::rotate(row.begin(), it, row.end());

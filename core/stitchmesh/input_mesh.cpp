@@ -95,7 +95,41 @@ InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vecto
     }
   }
 
-  // OpenMesh refuses faces that make a vertex non-manifold (two fans meeting at one vertex).
+  // Each vertex's faces must form one fan (joined through edges at the vertex); two fans meeting at a
+  // single vertex (a bow tie) are non-manifold. OpenMesh would accept some of these.
+  {
+    std::vector<int> parent;
+    const auto find = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    std::vector<std::vector<int>> faces_at(nv);
+    for (int f = 0; f < num_faces(); ++f)
+      for (int v : m_faces[f]) faces_at[v].push_back(f);
+    for (int v = 0; v < nv; ++v) {
+      const auto& fs = faces_at[v];
+      if (fs.size() < 2) continue;
+      parent.resize(fs.size());
+      for (size_t i = 0; i < fs.size(); ++i) parent[i] = static_cast<int>(i);
+      for (size_t i = 0; i < fs.size(); ++i)
+        for (size_t j = i + 1; j < fs.size(); ++j) {
+          // Faces i and j are joined at v when they share an edge that has v as an end.
+          const auto& a = m_faces[fs[i]];
+          const auto& b = m_faces[fs[j]];
+          bool joined = false;
+          for (size_t k = 0; k < a.size() && !joined; ++k) {
+            if (a[k] != v) continue;
+            const int prev = a[(k + a.size() - 1) % a.size()], next = a[(k + 1) % a.size()];
+            joined = std::find(b.begin(), b.end(), prev) != b.end() || std::find(b.begin(), b.end(), next) != b.end();
+          }
+          if (joined) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
+        }
+      for (size_t i = 1; i < fs.size(); ++i)
+        if (find(static_cast<int>(i)) != find(0))
+          fail("vertex " + std::to_string(v), "is non-manifold: faces " + std::to_string(fs[0]) + " and " + std::to_string(fs[i]) +
+                                                   " meet only at this vertex (two fans)");
+    }
+  }
   std::vector<PolyMesh::VertexHandle> vh(nv);
   for (int v = 0; v < nv; ++v) vh[v] = m_mesh.add_vertex(PolyMesh::Point(m_points[v].x(), m_points[v].y(), m_points[v].z()));
   std::vector<PolyMesh::VertexHandle> loop;

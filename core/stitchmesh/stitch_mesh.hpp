@@ -29,6 +29,7 @@ struct StitchFace {
   bool is_bottom(int k) const { return k < bottom; }
   bool is_top(int k) const { return k > bottom && k < size() - 1; }
   int vertex(int k) const { return vertices[static_cast<size_t>(k) % vertices.size()]; }
+  bool operator==(const StitchFace&) const = default;
 };
 
 /// A cable mark on a course edge (Yuksel 2012 §4.5): the marked run of edges becomes a cable face just
@@ -36,6 +37,7 @@ struct StitchFace {
 struct CableMark {
   int shift = 1;
   int order = 1;
+  bool operator==(const CableMark&) const = default;
 };
 
 /// Key of the undirected edge between two vertices.

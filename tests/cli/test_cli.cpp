@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+
+#include "testing.hpp"
+
+using skein::testing::ScratchDir;
+
+namespace {
+struct Run {
+  int status;
+  std::string output;
+};
+/// Runs the skein binary with arguments and returns its exit status and merged output.
+Run run_skein(const std::string& args) {
+  const std::string cmd = std::string(SKEIN_BIN) + " " + args + " 2>&1";
+  std::FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+const std::string kModels = SKEIN_MODELS_DIR;
+}  // namespace
+
+TEST(Cli, StitchThenStatsJson) {
+  ScratchDir dir;
+  const auto out = dir / "tube.skein";
+  const auto r = run_skein("stitch " + kModels + "/tube.obj --auto-label -o " + out.string() + " --png " + (dir / "rows.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "rows.png"));
+  const auto stats = run_skein("stats " + out.string() + " --json");
+  ASSERT_EQ(stats.status, 0) << stats.output;
+  for (const char* key : {"\"faces\"", "\"vertices\"", "\"rows\"", "\"increases\"", "\"decreases\"", "\"stitch_types\"", "\"invalid_faces\"",
+                          "\"valid\": true"})
+    EXPECT_NE(stats.output.find(key), std::string::npos) << key << "\n" << stats.output;
+}
+
+TEST(Cli, StoredLabelsGiveTheSameStitchMesh) {
+  ScratchDir dir;
+  ASSERT_EQ(run_skein("stitch " + kModels + "/beanie.obj --auto-label -o " + (dir / "a.skein").string()).status, 0);
+  ASSERT_EQ(run_skein("stitch " + kModels + "/beanie.obj --labels " + kModels + "/beanie.skein -o " + (dir / "b.skein").string()).status, 0);
+  EXPECT_EQ(slurp(dir / "a.skein"), slurp(dir / "b.skein"));
+  const auto wrong = run_skein("stitch " + kModels + "/tube.obj --labels " + kModels + "/beanie.skein -o " + (dir / "c.skein").string());
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_NE(wrong.output.find("made for a different mesh"), std::string::npos) << wrong.output;
+}
+
+TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
+  ScratchDir dir;
+  const auto bad = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  const auto out = dir / "out.skein";
+  const auto r = run_skein("stitch " + bad.string() + " --auto-label -o " + out.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("bad.obj"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("zero area"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto unwritable = run_skein("stitch " + kModels + "/tube.obj --auto-label -o /nonexistent/x.skein");
+  EXPECT_EQ(unwritable.status, 2);
+  EXPECT_NE(unwritable.output.find("does not exist"), std::string::npos) << unwritable.output;
+  EXPECT_NE(run_skein("stitch " + kModels + "/tube.obj -o " + out.string()).status, 0);  // neither --auto-label nor --labels
+}
+
+TEST(Cli, EditFillsRows) {
+  ScratchDir dir;
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label -o " + (dir / "s.skein").string()).status, 0);
+  const auto r = run_skein("edit " + (dir / "s.skein").string() + " --fill rib2x2 --rows 0:3 -o " + (dir / "r.skein").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto stats = run_skein("stats " + (dir / "r.skein").string() + " --json");
+  EXPECT_NE(stats.output.find("\"p\": 40"), std::string::npos) << stats.output;  // 4 rows x 10 purls of 20
+  EXPECT_EQ(run_skein("edit " + (dir / "s.skein").string() + " --fill ribbing -o " + (dir / "x.skein").string()).status, 2);
+}
