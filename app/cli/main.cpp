@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -43,8 +44,9 @@ mesh::InputMesh load_input(const fs::path& path) {
   return std::move(*project.input);
 }
 
-/// Labels stored in `path` for `mesh`: the same faces, corner for corner (vertex ids may differ).
-mesh::Labeling labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
+/// Labels (and tessellation values, when stored) in `path` for `mesh`: the same faces, corner for corner
+/// (vertex ids may differ).
+std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
   auto project = mesh::read_project(path);
   if (!project.input || !project.labels) throw Error(path.string(), "", "holds no labels (it needs 'input-mesh' and 'labels' sections)");
   const auto& stored = *project.input;
@@ -59,7 +61,7 @@ mesh::Labeling labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
       if ((stored.point(stored.face(f)[k]) - mesh.point(mesh.face(f)[k])).norm() > tolerance)
         differ("face " + std::to_string(f) + " corner " + std::to_string(k) + " is elsewhere");
   }
-  return std::move(*project.labels);
+  return {std::move(*project.labels), std::move(project.values)};
 }
 
 json stats_json(const mesh::StitchMesh& sm) {
@@ -114,6 +116,15 @@ std::pair<int, int> parse_rows(const std::string& s) {
   throw Error("", "--rows '" + s + "'", "expected a row or an inclusive range A:B with 0 <= A <= B");
 }
 
+/// "K=V" with two integers (edge or row id = tessellation value).
+std::pair<int, int> parse_assignment(const std::string& option, const std::string& s) {
+  int k = 0, v = 0;
+  char eq = 0, tail = 0;
+  if (std::sscanf(s.c_str(), "%d%c%d%c", &k, &eq, &v, &tail) != 3 || eq != '=')
+    throw Error("", option + " '" + s + "'", "expected ID=VALUE, e.g. 12=7");
+  return {k, v};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,7 +161,15 @@ int main(int argc, char** argv) {
   label->add_option("MESH", label_in, "mesh or .skein project")->required();
   label->add_option("--start-edge", label_start, "border edge to start from (default: the lowest)");
   label->add_option("--flip-row", flips, "flip these rows' wale direction after labeling");
-  label->add_option("-o,--output", label_out, "labels to write (.skein)")->required();
+  mesh::StitchSize label_size;
+  std::vector<std::string> course_values, row_values;
+  std::vector<int> marked_wales;
+  label->add_option("--stitch-size", label_size.width, "stitch width for the tessellation values [mm]")->capture_default_str();
+  label->add_option("--stitch-height", label_size.height, "stitch height [mm] (default: the width × 5/6)");
+  label->add_option("--course-value", course_values, "set a course edge's stitch count: EDGE=N (repeatable)");
+  label->add_option("--row-value", row_values, "set a row's stitch-row count: ROW=N (repeatable)");
+  label->add_option("--mark-wale", marked_wales, "wale edges next to which increases and decreases go");
+  label->add_option("-o,--output", label_out, "labels and tessellation values to write (.skein)")->required();
 
   // skein edit
   auto* edit = app.add_subcommand("edit", "change stitch types of a stitch mesh: fills over rows, single faces");
@@ -158,7 +177,10 @@ int main(int argc, char** argv) {
   std::vector<int> edit_faces;
   edit->add_option("PROJECT", edit_in, ".skein project with a stitch mesh")->required();
   edit->add_option("--fill", edit_fill, "stockinette, reverse, garter, seed, moss, rib or ribKxP");
-  edit->add_option("--rows", edit_rows, "rows A:B the fill covers (default: all)");
+  int near_border = -1;
+  auto* rows_opt = edit->add_option("--rows", edit_rows, "rows A:B the fill covers (default: all)");
+  edit->add_option("--near-border", near_border, "the fill covers the N stitch rows next to each border (hems, cuffs, necklines)")
+      ->excludes(rows_opt);
   edit->add_option("--set-type", edit_type, "stitch type for --faces");
   edit->add_option("--faces", edit_faces, "face ids for --set-type");
   edit->add_option("--png-types", edit_png, "picture coloured by stitch type");
@@ -169,7 +191,9 @@ int main(int argc, char** argv) {
   std::string stats_in;
   bool stats_json_flag = false;
   stats->add_option("FILE", stats_in, "mesh or .skein project")->required();
+  std::string stats_out;
   stats->add_flag("--json", stats_json_flag, "print JSON (default: text)");
+  stats->add_option("-o,--output", stats_out, "write the JSON here instead of printing it");
 
   // skein render
   auto* render_cmd = app.add_subcommand("render", "draw a project's stitch mesh to PNG");
@@ -200,13 +224,26 @@ int main(int argc, char** argv) {
       const auto& m = *project.input;
       spdlog::info("loaded {}: {} vertices, {} faces ({:.3f} s)", stitch_in, m.num_vertices(), m.num_faces(), t.seconds());
       t = {};
-      project.labels = auto_label ? mesh::auto_label(m, start_edge >= 0 ? start_edge : mesh::default_start_edge(m)) : labels_for(m, stitch_labels);
+      std::optional<mesh::TessellationValues> stored_values;
+      if (auto_label) {
+        project.labels = mesh::auto_label(m, start_edge >= 0 ? start_edge : mesh::default_start_edge(m));
+      } else {
+        auto stored = labels_for(m, stitch_labels);
+        project.labels = std::move(stored.first);
+        stored_values = std::move(stored.second);
+      }
       const auto report = mesh::validate_labels(m, *project.labels);
       spdlog::info("labeled {} rows ({:.3f} s); {} edges with opposite wale directions on their two sides", project.labels->rows, t.seconds(),
                    report.mismatches.size());
       for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", stitch_in, f, why);
       t = {};
-      project.values = mesh::initial_values(m, *project.labels, size);
+      const bool size_given = stitch->count("--stitch-size") + stitch->count("--stitch-height") > 0;
+      if (stored_values && !size_given) {
+        project.values = std::move(stored_values);
+        spdlog::info("using the tessellation values stored in {}", stitch_labels);
+      } else {
+        project.values = mesh::initial_values(m, *project.labels, size);
+      }
       project.stitch = mesh::tessellate(m, *project.labels, *project.values);
       const auto s = mesh::stitch_stats(*project.stitch);
       spdlog::info("tessellated: {} stitch faces, {} rows, {} increases, {} decreases ({:.3f} s)", s.faces, s.rows, s.increases, s.decreases,
@@ -232,6 +269,20 @@ int main(int argc, char** argv) {
       const auto report = mesh::validate_labels(m, *project.labels);
       for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", label_in, f, why);
       for (const auto& [e, why] : report.mismatches) spdlog::warn("{}: edge {}: {}", label_in, e, why);
+      if (label->count("--stitch-height") == 0) label_size.height = label_size.width * 5.0 / 6.0;
+      project.stitch_size = label_size;
+      if (report.valid()) {
+        project.values = mesh::initial_values(m, *project.labels, label_size);
+        for (const auto& a : course_values) {
+          const auto [e, n] = parse_assignment("--course-value", a);
+          mesh::set_course_value(m, *project.labels, *project.values, e, n);
+        }
+        for (const auto& a : row_values) {
+          const auto [r, n] = parse_assignment("--row-value", a);
+          mesh::set_row_value(m, *project.labels, *project.values, r, n);
+        }
+        for (int e : marked_wales) mesh::mark_wale_edge(m, *project.labels, *project.values, e, true);
+      }
       mesh::write_project(project, label_out);
       spdlog::info("{} rows; wrote {}", project.labels->rows, label_out);
       return report.valid() ? 0 : 1;
@@ -243,10 +294,14 @@ int main(int argc, char** argv) {
       auto& sm = *project.stitch;
       if (!edit_fill.empty()) {
         const auto pattern = mesh::parse_fill(edit_fill);
-        const auto [a, b] = edit_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(edit_rows);
         std::vector<int> faces;
-        for (int f = 0; f < static_cast<int>(sm.faces.size()); ++f)
-          if (sm.faces[f].row >= a && sm.faces[f].row <= b) faces.push_back(f);
+        if (near_border >= 0) {
+          faces = mesh::faces_near_border(sm, near_border);
+        } else {
+          const auto [a, b] = edit_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(edit_rows);
+          for (int f = 0; f < static_cast<int>(sm.faces.size()); ++f)
+            if (sm.faces[f].row >= a && sm.faces[f].row <= b) faces.push_back(f);
+        }
         sm = mesh::fill(sm, faces, pattern);
         spdlog::info("filled {} faces with {}", faces.size(), edit_fill);
       }
@@ -265,7 +320,9 @@ int main(int argc, char** argv) {
       } else {
         j = mesh_json(mesh::load_mesh(stats_in));
       }
-      if (stats_json_flag) {
+      if (!stats_out.empty()) {
+        write_json(j, stats_out);
+      } else if (stats_json_flag) {
         std::cout << j.dump(2) << "\n";
       } else {
         for (const auto& [k, v] : j.items()) std::cout << k << ": " << v.dump() << "\n";

@@ -284,43 +284,110 @@ StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fil
   const std::set<int> chosen(faces.begin(), faces.end());
   for (int f : chosen)
     if (f < 0 || f >= static_cast<int>(mesh.faces.size())) throw Error("", "face " + std::to_string(f), "does not exist");
-  // Columns: position along the row, ring rows turned so their first face sits above the previous row's.
-  auto rows = faces_by_row(mesh);
+  const auto rows = faces_by_row(mesh);
   const EdgeTable table = edge_table(mesh);
-  const auto across = [&](int f, int k) {
+  // The face below f: across its first bottom edge, where that edge is the other face's top edge.
+  const auto below = [&](int f) {
     const auto& face = mesh.faces[f];
-    const auto it = table.find(edge_key(face.vertex(k), face.vertex(k + 1)));
-    if (it == table.end() || it->second.count != 2) return -1;
-    return it->second.use[0].face == f ? it->second.use[1].face : it->second.use[0].face;
+    const auto& uses = table.at(edge_key(face.vertex(0), face.vertex(1)));
+    if (uses.count != 2) return -1;
+    const auto& other = uses.use[0].face == f ? uses.use[1] : uses.use[0];
+    return mesh.faces[other.face].is_top(other.local) ? other.face : -1;
   };
-  const auto face_above = [&](int f) { return across(f, mesh.faces[f].size() - 2); };
-  std::vector<int> column(mesh.faces.size(), 0);
-  for (size_t r = 0; r < rows.size(); ++r) {
-    auto& row = rows[r];
-    const bool ring = !row.empty() && across(row.front(), mesh.faces[row.front()].left_wale()) == row.back();
-    if (ring && r > 0 && !rows[r - 1].empty()) {
-      const int above = face_above(rows[r - 1].front());
-      const auto it = std::find(row.begin(), row.end(), above);
-      if (it != row.end()) std::rotate(row.begin(), it, row.end());
-    }
-    for (size_t i = 0; i < row.size(); ++i) column[row[i]] = static_cast<int>(i);
+  // Rows bottom-up along the wale direction (Kahn's order over "row below"), so that each row lines its
+  // columns up with the stitches it is knitted into and counts its level from the cast-on.
+  const int nrows = static_cast<int>(rows.size());
+  std::vector<std::set<int>> rows_above(nrows);
+  std::vector<int> waiting(nrows, 0);
+  for (int r = 0; r < nrows; ++r) {
+    std::set<int> under;
+    for (int f : rows[r])
+      if (const int b = below(f); b >= 0 && mesh.faces[b].row != r) under.insert(mesh.faces[b].row);
+    waiting[r] = static_cast<int>(under.size());
+    for (int u : under) rows_above[u].insert(r);
   }
+  std::vector<int> order;
+  for (int r = 0; r < nrows; ++r)
+    if (waiting[r] == 0) order.push_back(r);
+  for (size_t i = 0; i < order.size(); ++i)
+    for (int a : rows_above[order[i]])
+      if (--waiting[a] == 0) order.push_back(a);
+  for (int r = 0; r < nrows; ++r)
+    if (waiting[r] > 0) order.push_back(r);  // a cycle of opposite wale directions: any order will do
+
+  std::vector<long> column(mesh.faces.size(), 0);
+  std::vector<char> placed(mesh.faces.size(), 0);
+  std::vector<int> level(nrows, 0);
+  for (int r : order) {
+    const auto& row = rows[r];
+    // Each stitch takes the column of the stitch below it; the second stitch above an increase (same stitch
+    // below) takes the next column. Stitches with nothing placed below continue from their left neighbour.
+    size_t first_anchored = row.size();
+    for (size_t i = 0; i < row.size() && first_anchored == row.size(); ++i)
+      if (const int b = below(row[i]); b >= 0 && placed[b]) first_anchored = i;
+    long col = first_anchored < row.size() ? column[below(row[first_anchored])] - static_cast<long>(first_anchored) : 0;
+    for (size_t i = 0; i < row.size(); ++i) {
+      const int f = row[i], b = below(f);
+      const bool anchored = b >= 0 && placed[b] && (i == 0 || b != below(row[i - 1]));
+      col = anchored ? column[b] : (i == 0 ? col : col + 1);
+      column[f] = col;
+      if (b >= 0 && placed[b]) level[r] = std::max(level[r], level[mesh.faces[b].row] + 1);
+    }
+    for (int f : row) placed[f] = 1;
+  }
+
   StitchMesh out = mesh;
+  const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
   for (int f : chosen) {
     auto& face = out.faces[f];
     if (face.bottom != 1 || face.top() != 1) continue;
-    const int row = face.row, col = column[f];
+    const long row = level[face.row], col = column[f];
     bool knit = true;
     switch (pattern.kind) {
       case FillKind::Stockinette: knit = true; break;
       case FillKind::ReverseStockinette: knit = false; break;
-      case FillKind::Rib: knit = col % (pattern.knits + pattern.purls) < pattern.knits; break;
-      case FillKind::Garter: knit = row % 2 == 0; break;
-      case FillKind::Seed: knit = (row + col) % 2 == 0; break;
-      case FillKind::Moss: knit = (row / 2 + col) % 2 == 0; break;
+      case FillKind::Rib: knit = mod(col, pattern.knits + pattern.purls) < pattern.knits; break;
+      case FillKind::Garter: knit = mod(row, 2) == 0; break;
+      case FillKind::Seed: knit = mod(row + col, 2) == 0; break;
+      case FillKind::Moss: knit = mod(row / 2 + col, 2) == 0; break;
     }
     face.type = knit ? "k" : "p";
   }
+  return out;
+}
+
+std::vector<int> faces_near_border(const StitchMesh& mesh, int rows) {
+  if (rows < 0) throw Error("", "border rows", "must be 0 or more, got " + std::to_string(rows));
+  const EdgeTable table = edge_table(mesh);
+  const int nf = static_cast<int>(mesh.faces.size());
+  std::vector<int> distance(nf, -1), frontier;
+  for (int f = 0; f < nf; ++f) {
+    const auto& face = mesh.faces[f];
+    for (int k = 0; k < face.size(); ++k)
+      if (!face.is_wale(k) && table.at(edge_key(face.vertex(k), face.vertex(k + 1))).count == 1) {
+        distance[f] = 0;
+        frontier.push_back(f);
+        break;
+      }
+  }
+  // Breadth-first across course edges, one stitch row per step.
+  for (int d = 1; d < rows && !frontier.empty(); ++d) {
+    std::vector<int> next;
+    for (int f : frontier) {
+      const auto& face = mesh.faces[f];
+      for (int k = 0; k < face.size(); ++k) {
+        if (face.is_wale(k)) continue;
+        const auto& uses = table.at(edge_key(face.vertex(k), face.vertex(k + 1)));
+        if (uses.count != 2) continue;
+        const int g = uses.use[0].face == f ? uses.use[1].face : uses.use[0].face;
+        if (distance[g] < 0) distance[g] = d, next.push_back(g);
+      }
+    }
+    frontier = std::move(next);
+  }
+  std::vector<int> out;
+  for (int f = 0; f < nf; ++f)
+    if (distance[f] >= 0 && distance[f] < rows) out.push_back(f);
   return out;
 }
 

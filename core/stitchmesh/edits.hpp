@@ -48,4 +48,8 @@ struct Fill {
 Fill parse_fill(const std::string& text);
 StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fill& pattern);
 
+/// Faces within `rows` stitch rows of a border course edge (cast-on and bind-off edges: hems, cuffs,
+/// necklines), counted across course edges; the usual place for ribbing.
+std::vector<int> faces_near_border(const StitchMesh& mesh, int rows);
+
 }  // namespace skein::mesh

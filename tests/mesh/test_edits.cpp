@@ -182,3 +182,12 @@ TEST(Edits, EveryAcceptedEditKeepsTheMeshValid) {
   EXPECT_GT(accepted, 30);
   EXPECT_GT(refused, 30);
 }
+
+TEST(Edits, FacesNearTheBorderAreTheHemAndTheTop) {
+  const auto s = stitched(models::swatch());  // 20 stitch rows of 20
+  const auto near = mesh::faces_near_border(s, 3);
+  EXPECT_EQ(near.size(), 2u * 3 * 20);  // three rows at the bottom, three at the top
+  for (int f : near) EXPECT_TRUE(s.faces[f].row < 3 || s.faces[f].row >= 17) << f;
+  EXPECT_TRUE(mesh::faces_near_border(s, 0).empty());
+  EXPECT_THROW(mesh::faces_near_border(s, -1), Error);
+}

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs the Debian packages skein needs, configures and builds it into build/ (Release).
+# Safe to run again: it only installs what is missing and rebuilds what changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${SKEIN_CMAKE_ARGS:-} >/dev/null
+cmake --build build
