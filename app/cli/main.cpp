@@ -116,6 +116,19 @@ std::pair<int, int> parse_rows(const std::string& s) {
   throw Error("", "--rows '" + s + "'", "expected a row or an inclusive range A:B with 0 <= A <= B");
 }
 
+/// JSON as "key.sub: value" lines; long lists show their first entries and a count.
+void print_text(const json& j, const std::string& prefix) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) print_text(v, prefix.empty() ? k : prefix + "." + k);
+  } else if (j.is_array() && !j.empty() && j.front().is_object()) {
+    constexpr size_t shown = 5;
+    for (size_t i = 0; i < std::min(shown, j.size()); ++i) print_text(j[i], prefix + "[" + std::to_string(i) + "]");
+    if (j.size() > shown) std::cout << prefix << ": ... " << j.size() - shown << " more (see --json)\n";
+  } else {
+    std::cout << prefix << ": " << (j.is_string() ? j.get<std::string>() : j.dump()) << "\n";
+  }
+}
+
 /// "K=V" with two integers (edge or row id = tessellation value).
 std::pair<int, int> parse_assignment(const std::string& option, const std::string& s) {
   int k = 0, v = 0;
@@ -325,7 +338,7 @@ int main(int argc, char** argv) {
       } else if (stats_json_flag) {
         std::cout << j.dump(2) << "\n";
       } else {
-        for (const auto& [k, v] : j.items()) std::cout << k << ": " << v.dump() << "\n";
+        print_text(j, "");
       }
       return 0;
     }
