@@ -172,7 +172,11 @@ int main(int argc, char** argv) {
   int label_start = -1;
   std::vector<int> flips;
   label->add_option("MESH", label_in, "mesh or .skein project")->required();
-  label->add_option("--start-edge", label_start, "border edge to start from (default: the lowest)");
+  std::vector<int> first_rows, next_rows;
+  auto* start_opt = label->add_option("--start-edge", label_start, "auto-label from this border edge (default: the lowest)");
+  auto* first_opt = label->add_option("--first-row", first_rows, "label by hand: first rows from these border edges (instead of auto-label)");
+  label->add_option("--next-row", next_rows, "then the next row across each of these course edges, in order")->needs(first_opt);
+  first_opt->excludes(start_opt);
   label->add_option("--flip-row", flips, "flip these rows' wale direction after labeling");
   mesh::StitchSize label_size;
   std::vector<std::string> course_values, row_values;
@@ -274,7 +278,13 @@ int main(int argc, char** argv) {
       mesh::Project project;
       project.input = load_input(label_in);
       const auto& m = *project.input;
-      project.labels = mesh::auto_label(m, label_start >= 0 ? label_start : mesh::default_start_edge(m));
+      if (first_rows.empty()) {
+        project.labels = mesh::auto_label(m, label_start >= 0 ? label_start : mesh::default_start_edge(m));
+      } else {
+        project.labels = mesh::Labeling(m);
+        for (int e : first_rows) mesh::label_first_row(m, *project.labels, e);
+        for (int e : next_rows) mesh::label_next_row(m, *project.labels, e);
+      }
       for (int r : flips) {
         if (r < 0 || r >= project.labels->rows) throw Error("", "--flip-row " + std::to_string(r), "no such row (there are " + std::to_string(project.labels->rows) + ")");
         mesh::flip_row(*project.labels, r);

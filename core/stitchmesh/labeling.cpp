@@ -302,7 +302,12 @@ Labeling auto_label(const InputMesh& mesh, int border_edge) {
   int start = border_edge;
   while (start >= 0) {
     tried_start[start] = 1;
-    const auto first = label_first_row(mesh, labels, start);
+    std::vector<int> first;
+    try {
+      first = label_first_row(mesh, labels, start);
+    } catch (const Error&) {
+      // Its border run meets a wale edge of a row labeled already: try the next start instead.
+    }
     fixed_rows.insert(fixed_rows.end(), first.begin(), first.end());
     // Rows in labeling order; each row seeds the rows across its course edges, above and below.
     for (int r = first.empty() ? labels.rows : first.front(); r < labels.rows; ++r) {
@@ -335,7 +340,7 @@ LabelReport validate_labels(const InputMesh& mesh, const Labeling& labels) {
     int wale = 0;
     for (int e : mesh.face_edges(f)) wale += labels.edges[e] == EdgeLabel::Wale;
     if (!fl.labeled()) {
-      report.face_problems.emplace_back(f, "is not labeled (no row reaches it without contradicting the labels around it)");
+      report.face_problems.emplace_back(f, "is not labeled (no labeled row reaches it, or its edges contradict the labels around it)");
     } else if (wale != 2) {
       report.face_problems.emplace_back(f, "has " + std::to_string(wale) + " wale edges; a face needs exactly 2");
     } else if (fl.left < 0 || fl.left >= n || fl.right < 0 || fl.right >= n ||

@@ -96,3 +96,17 @@ TEST(Cli, EditedTessellationValuesCarryIntoTheStitchMesh) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("at least 1"), std::string::npos) << bad.output;
 }
+
+TEST(Cli, LabelRowByRowByHand) {
+  ScratchDir dir;
+  const auto out = (dir / "l.skein").string();
+  // The swatch's bottom border edge 0, then the next row across course edge 2 (face 0's top edge).
+  const auto partial = run_skein("label " + kModels + "/swatch.obj --first-row 0 --next-row 2 -o " + out);
+  EXPECT_EQ(partial.status, 1) << partial.output;  // rows 2 and 3 are still unlabeled: named, and saved
+  EXPECT_NE(partial.output.find("is not labeled"), std::string::npos) << partial.output;
+  const auto stats = run_skein("stats " + out + " --json");
+  EXPECT_NE(stats.output.find("\"invalid_faces\": 8"), std::string::npos) << stats.output;
+  const auto bad = run_skein("label " + kModels + "/swatch.obj --first-row 2 -o " + out);  // an inner edge
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("not a border edge"), std::string::npos) << bad.output;
+}

@@ -167,3 +167,39 @@ TEST(InputMesh, WriteObjReadsBack) {
   const auto back = mesh::load_mesh(dir / "out.obj");
   EXPECT_EQ(back.faces(), m.faces());
 }
+
+namespace {
+std::string base64(const std::string& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned n = (static_cast<unsigned char>(bytes[i]) << 16) | (i + 1 < bytes.size() ? static_cast<unsigned char>(bytes[i + 1]) << 8 : 0) |
+                       (i + 2 < bytes.size() ? static_cast<unsigned char>(bytes[i + 2]) : 0);
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[n & 63] : '=';
+  }
+  return out;
+}
+}  // namespace
+
+TEST(InputMesh, ReadsGltfAndWeldsAcrossMeshes) {
+  // Two glTF meshes (a triangle each) that share an edge: welding joins them into one surface.
+  std::string buffer;
+  const auto put_float = [&](float x) { buffer.append(reinterpret_cast<const char*>(&x), 4); };
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put_float(v);  // triangle A
+  for (float v : {1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put_float(v);  // triangle B
+  const std::string gltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+"nodes":[{"mesh":0},{"mesh":1}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]},{"primitives":[{"attributes":{"POSITION":1}}]}],
+"buffers":[{"byteLength":72,"uri":"data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}]})";
+  ScratchDir dir;
+  const auto m = mesh::load_mesh(dir.write("two.gltf", gltf));
+  EXPECT_EQ(m.num_faces(), 2);
+  EXPECT_EQ(m.num_vertices(), 4);
+  EXPECT_EQ(m.num_edges(), 5);
+}

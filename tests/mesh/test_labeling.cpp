@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <random>
 #include <set>
 
 #include "common/error.hpp"
 #include "garments.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "stitchmesh/tessellation.hpp"
 #include "testing.hpp"
 
 using namespace skein;
@@ -156,4 +159,53 @@ TEST(Labeling, AutoLabelIsDeterministic) {
     EXPECT_EQ(a.faces[f].row, b.faces[f].row);
     EXPECT_EQ(a.faces[f].left, b.faces[f].left);
   }
+}
+
+TEST(Labeling, IrregularMeshesNeverHangOrCrash) {
+  // Grids with random diagonal splits, merged quads (hexagons) and holes: labeling must finish, and either
+  // tessellation succeeds or it refuses naming a face.
+  std::mt19937 rng(5);
+  int tessellated = 0, refused = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int w = 3 + static_cast<int>(rng() % 5), h = 2 + static_cast<int>(rng() % 5);
+    std::vector<Eigen::Vector3d> p;
+    for (int y = 0; y <= h; ++y)
+      for (int x = 0; x <= w; ++x) p.emplace_back(10.0 * x, 10.0 * y, 0.3 * ((x * 7 + y * 3) % 5));
+    const auto id = [&](int x, int y) { return y * (w + 1) + x; };
+    std::vector<std::vector<int>> faces;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const int kind = static_cast<int>(rng() % 8);
+        if (kind == 0) continue;  // a hole
+        if (kind == 1) {           // two triangles
+          faces.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+          faces.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+        } else if (kind == 2 && x + 1 < w) {  // a hexagon over two cells
+          faces.push_back({id(x, y), id(x + 1, y), id(x + 2, y), id(x + 2, y + 1), id(x + 1, y + 1), id(x, y + 1)});
+          ++x;
+        } else {
+          faces.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1)});
+        }
+      }
+    if (faces.empty()) continue;
+    std::unique_ptr<mesh::InputMesh> m;
+    try {
+      m = std::make_unique<mesh::InputMesh>(p, faces, "random");
+    } catch (const Error&) {
+      continue;  // holes can leave bow-tie vertices, which are refused
+    }
+    const auto l = mesh::auto_label(*m, mesh::default_start_edge(*m));
+    const auto report = mesh::validate_labels(*m, l);
+    try {
+      const auto s = mesh::tessellate(*m, l, mesh::initial_values(*m, l, {}));
+      EXPECT_TRUE(report.valid());
+      EXPECT_TRUE(mesh::validate(s).valid()) << mesh::validate(s).summary();
+      ++tessellated;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("face"), std::string::npos) << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GT(tessellated, 10);
+  EXPECT_GT(refused, 10);
 }
