@@ -102,6 +102,20 @@ void remove_free_vertex(StitchMesh& out, int w) {
   out.cables = std::move(cables);
 }
 
+/// The two stitches on either side of wale edge u-v: the one it is the right wale edge of, then the other.
+std::pair<int, int> stitches_beside(const StitchMesh& mesh, int u, int v) {
+  const auto uses = uses_of(mesh, u, v);
+  int a = -1, b = -1;
+  for (const auto& use : uses) {
+    const auto& face = mesh.faces[use.face];
+    if (use.local == face.right_wale()) a = use.face;
+    if (use.local == face.left_wale()) b = use.face;
+  }
+  if (uses.size() != 2 || a < 0 || b < 0 || a == b)
+    throw Error("", edge_name(u, v), "is not a wale edge between two stitches of one row");
+  return {a, b};
+}
+
 }  // namespace
 
 StitchMesh set_stitch_type(const StitchMesh& mesh, const std::vector<int>& faces, const std::string& type) {
@@ -146,14 +160,13 @@ StitchMesh add_wale_edge(const StitchMesh& mesh, int f) {
     split_unchecked(out, face.vertex(face.bottom + 1), face.vertex(face.bottom + 2));
   }
   const StitchFace face = out.faces[f];
-  const int n = face.size(), bi = face.bottom / 2, ti = face.bottom + 1 + face.top() / 2;
+  const int bi = face.bottom / 2, ti = face.bottom + 1 + face.top() / 2;
   StitchFace left = face, right = face;
   left.vertices.assign(face.vertices.begin(), face.vertices.begin() + bi + 1);
   left.vertices.insert(left.vertices.end(), face.vertices.begin() + ti, face.vertices.end());
   left.bottom = bi;
   right.vertices.assign(face.vertices.begin() + bi, face.vertices.begin() + ti + 1);
   right.bottom = face.bottom - bi;
-  (void)n;
   refit_type(left);
   refit_type(right);
   right.input_face = left.input_face;
@@ -163,15 +176,7 @@ StitchMesh add_wale_edge(const StitchMesh& mesh, int f) {
 }
 
 StitchMesh remove_wale_edge(const StitchMesh& mesh, int u, int v) {
-  const auto uses = uses_of(mesh, u, v);
-  int a = -1, b = -1;
-  for (const auto& use : uses) {
-    const auto& face = mesh.faces[use.face];
-    if (use.local == face.right_wale()) a = use.face;
-    if (use.local == face.left_wale()) b = use.face;
-  }
-  if (uses.size() != 2 || a < 0 || b < 0 || a == b)
-    throw Error("", edge_name(u, v), "is not a wale edge between two stitches of one row");
+  const auto [a, b] = stitches_beside(mesh, u, v);
   const StitchFace &A = mesh.faces[a], &B = mesh.faces[b];
   const int bottom_end = A.vertex(A.bottom), top_end = A.vertex(A.bottom + 1);
   StitchFace merged = A;
@@ -194,15 +199,7 @@ StitchMesh remove_wale_edge(const StitchMesh& mesh, int u, int v) {
 
 StitchMesh shift_wale_edge(const StitchMesh& mesh, int u, int v, WaleEnd end, int direction) {
   if (direction != 1 && direction != -1) throw Error("", edge_name(u, v), "a wale edge shifts by +1 or -1");
-  const auto uses = uses_of(mesh, u, v);
-  int a = -1, b = -1;
-  for (const auto& use : uses) {
-    const auto& face = mesh.faces[use.face];
-    if (use.local == face.right_wale()) a = use.face;
-    if (use.local == face.left_wale()) b = use.face;
-  }
-  if (uses.size() != 2 || a < 0 || b < 0 || a == b)
-    throw Error("", edge_name(u, v), "is not a wale edge between two stitches of one row");
+  const auto [a, b] = stitches_beside(mesh, u, v);
   StitchMesh out = mesh;
   auto &A = out.faces[a].vertices, &B = out.faces[b].vertices;
   int& nbA = out.faces[a].bottom;

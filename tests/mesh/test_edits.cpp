@@ -7,9 +7,11 @@
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/tessellation.hpp"
+#include "stitch_fixtures.hpp"
 #include "testing.hpp"
 
 using namespace skein;
+using skein::testing::all_faces;
 using skein::testing::error_of;
 
 namespace {
@@ -110,14 +112,7 @@ TEST(Edits, ShiftAWaleEdgeAndBack) {
 
 TEST(Edits, CableMarksNeedACourseRunBetweenTwoRows) {
   const auto s = stitched(models::swatch());
-  const auto rows = mesh::faces_by_row(s);
-  // The top edges of three neighbouring stitches of row 4, left to right.
-  std::vector<int> path;
-  for (int i = 8; i < 11; ++i) {
-    const auto& f = s.faces[rows[4][i]];
-    if (path.empty()) path.push_back(f.vertex(f.size() - 1));
-    path.push_back(f.vertex(f.bottom + 1));
-  }
+  const auto path = skein::testing::top_path(s, 4, 8, 11);  // three neighbouring stitches of row 4
   const auto marked = mesh::mark_cable(s, path, 1, 1);
   EXPECT_EQ(marked.cables.size(), 3u);
   EXPECT_TRUE(mesh::validate(marked).valid());
@@ -132,8 +127,7 @@ TEST(Edits, CableMarksNeedACourseRunBetweenTwoRows) {
 
 TEST(Edits, RibFillMakesAlignedColumns) {
   const auto s = stitched(models::swatch());
-  std::vector<int> all(s.faces.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const auto all = all_faces(s);
   const auto rib = mesh::fill(s, all, mesh::parse_fill("rib2x2"));
   for (const auto& row : mesh::faces_by_row(rib))
     for (size_t i = 0; i < row.size(); ++i) EXPECT_EQ(rib.faces[row[i]].type, i % 4 < 2 ? "k" : "p");
@@ -148,8 +142,7 @@ TEST(Edits, RibFillMakesAlignedColumns) {
 
 TEST(Edits, FillsKeepIncreasesAndDecreases) {
   const auto s = stitched(models::beanie());
-  std::vector<int> all(s.faces.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const auto all = all_faces(s);
   const auto moss = mesh::fill(s, all, mesh::parse_fill("moss"));
   EXPECT_TRUE(mesh::validate(moss).valid());
   EXPECT_EQ(mesh::stitch_stats(moss).decreases, mesh::stitch_stats(s).decreases);

@@ -4,6 +4,7 @@
 #include "garments.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/project.hpp"
+#include "stitch_fixtures.hpp"
 #include "testing.hpp"
 
 using namespace skein;
@@ -19,17 +20,8 @@ mesh::Project full_project() {
   p.values = mesh::initial_values(*p.input, *p.labels, p.stitch_size);
   p.values->marked[p.input->face_edge(3, p.labels->faces[3].left)] = 1;
   auto s = mesh::tessellate(*p.input, *p.labels, *p.values);
-  std::vector<int> all(s.faces.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  s = mesh::fill(s, all, mesh::parse_fill("rib2x2"));
-  const auto rows = mesh::faces_by_row(s);
-  std::vector<int> path;
-  for (int i = 2; i < 4; ++i) {
-    const auto& f = s.faces[rows[3][i]];
-    if (path.empty()) path.push_back(f.vertex(f.size() - 1));
-    path.push_back(f.vertex(f.bottom + 1));
-  }
-  p.stitch = mesh::mark_cable(s, path, 1, -1);
+  s = mesh::fill(s, skein::testing::all_faces(s), mesh::parse_fill("rib2x2"));
+  p.stitch = mesh::mark_cable(s, skein::testing::top_path(s, 3, 2, 4), 1, -1);
   return p;
 }
 

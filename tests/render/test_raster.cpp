@@ -8,6 +8,7 @@
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/tessellation.hpp"
+#include "stitch_fixtures.hpp"
 #include "testing.hpp"
 
 using namespace skein;
@@ -24,9 +25,7 @@ TEST(Render, StitchTypesShowTheirColours) {
   const auto m = models::tube();
   const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
   auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {}));
-  std::vector<int> all(s.faces.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-  s = mesh::fill(s, all, mesh::parse_fill("rib"));
+  s = mesh::fill(s, skein::testing::all_faces(s), mesh::parse_fill("rib"));
   render::View view;
   view.panel = 300;
   const auto img = render::draw(render::stitch_polygons(s, render::ColorBy::StitchType), view);
