@@ -1,5 +1,7 @@
 // skein: the command line. Thin: parses arguments, calls the library, prints what happened.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,12 +15,15 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
+#include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
+#include "render/yarn_view.hpp"
 #include "skein/config.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_emission.hpp"
 
 namespace fs = std::filesystem;
 using namespace skein;
@@ -98,13 +103,50 @@ void write_json(const json& j, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
+void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color) {
+  Stopwatch t;
+  render::View view;
+  view.outlines = false;
+  render::write_png(render::draw(render::yarn_polygons(yarn, color), view), path);
+  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
+}
+
 void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color) {
   Stopwatch t;
   render::write_png(render::draw(render::stitch_polygons(sm, color), render::View{}), path);
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
-render::ColorBy parse_color(const std::string& s) { return s == "type" ? render::ColorBy::StitchType : render::ColorBy::Row; }
+bool is_bcc(const fs::path& path) { return path.extension() == ".bcc"; }
+
+/// Yarn from a .bcc file, or emitted from a project's stitch mesh.
+mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr) {
+  if (is_bcc(path)) return relax::read_bcc(path);
+  const auto project = mesh::read_project(path);
+  if (!project.stitch) throw Error(path.string(), "", "holds no stitch mesh; run 'skein stitch' first");
+  mesh::EmitOptions options;
+  options.yarn_radius = radius > 0 ? radius : 0.1 * project.stitch_size.width;
+  const auto& library = stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(stitches);
+  return mesh::emit_yarn(*project.stitch, library, options, report);
+}
+
+json yarn_json(const mesh::YarnCurves& yarn) {
+  const auto s = relax::yarn_stats(yarn);
+  return {{"kind", "yarn"},
+          {"curves", s.curves},
+          {"closed_curves", s.closed_curves},
+          {"control_points", s.control_points},
+          {"total_length", s.total_length},
+          {"min_segment_distance", std::isfinite(s.min_segment_distance) ? json(s.min_segment_distance) : json(nullptr)},
+          {"radius", s.radius}};
+}
+
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path) {
+  const auto ext = fs::path(path).extension();
+  if (ext == ".bcc") relax::write_bcc(yarn, path);
+  else if (ext == ".obj") relax::write_obj_polylines(yarn, path);
+  else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
+}
 
 /// "A:B" (inclusive) or "A" → row ids.
 std::pair<int, int> parse_rows(const std::string& s) {
@@ -203,8 +245,20 @@ int main(int argc, char** argv) {
   edit->add_option("--png-types", edit_png, "picture coloured by stitch type");
   edit->add_option("-o,--output", edit_out, "project to write")->required();
 
+  // skein yarn
+  auto* yarn_cmd = app.add_subcommand("yarn", "emit yarn curves from a stitch mesh (.bcc or OBJ polylines)");
+  std::string yarn_in, yarn_out, yarn_tubes, yarn_png, yarn_color = "type", stitches_dir;
+  double yarn_radius = 0;
+  yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
+  yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
+  yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
+  yarn_cmd->add_option("--yarn-radius", yarn_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  yarn_cmd->add_option("--png", yarn_png, "picture of the yarn as shaded tubes");
+  yarn_cmd->add_option("--color", yarn_color, "tube colour: type or yarn")->check(CLI::IsMember({"type", "yarn"}));
+  yarn_cmd->add_option("--stitches", stitches_dir, "stitch library folder (default: the bundled stitches/)");
+
   // skein stats
-  auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling or stitch mesh");
+  auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
   std::string stats_in;
   bool stats_json_flag = false;
   stats->add_option("FILE", stats_in, "mesh or .skein project")->required();
@@ -215,9 +269,14 @@ int main(int argc, char** argv) {
   // skein render
   auto* render_cmd = app.add_subcommand("render", "draw a project's stitch mesh to PNG");
   std::string render_in, render_out, render_color = "row";
-  render_cmd->add_option("PROJECT", render_in, ".skein project with a stitch mesh")->required();
+  bool render_yarn = false;
+  double render_radius = 0;
+  render_cmd->add_option("INPUT", render_in, ".skein project (its stitch mesh, or with --yarn its yarn) or .bcc yarn")->required();
   render_cmd->add_option("-o,--output", render_out, "PNG to write")->required();
-  render_cmd->add_option("--color", render_color, "row or type")->check(CLI::IsMember({"row", "type"}));
+  render_cmd->add_flag("--yarn", render_yarn, "draw the project's yarn as tubes instead of its stitch mesh");
+  render_cmd->add_option("--yarn-radius", render_radius, "yarn radius [mm] for --yarn (default: a tenth of the stitch width)");
+  render_cmd->add_option("--color", render_color, "row or type for stitch meshes; type or yarn for yarn")
+      ->check(CLI::IsMember({"row", "type", "yarn"}));
 
   // skein devices
   auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
@@ -335,7 +394,9 @@ int main(int argc, char** argv) {
     }
     if (*stats) {
       json j;
-      if (is_project(stats_in)) {
+      if (is_bcc(stats_in)) {
+        j = yarn_json(relax::read_bcc(stats_in));
+      } else if (is_project(stats_in)) {
         const auto project = mesh::read_project(stats_in);
         if (project.stitch) j = stats_json(*project.stitch);
         else if (project.labels) j = {{"kind", "labeled-mesh"}, {"mesh", mesh_json(*project.input)}, {"labels", labels_json(*project.input, *project.labels)}};
@@ -353,9 +414,33 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*render_cmd) {
+      check_writable(render_out);
+      if (render_yarn || is_bcc(render_in)) {
+        render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out, render_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
+        return 0;
+      }
       const auto project = mesh::read_project(render_in);
       if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
-      render_stitch_mesh(*project.stitch, render_out, parse_color(render_color));
+      render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row);
+      return 0;
+    }
+    if (*yarn_cmd) {
+      for (const auto& p : {yarn_out, yarn_tubes, yarn_png})
+        if (!p.empty()) check_writable(p);
+      Stopwatch t;
+      mesh::EmitReport report;
+      const auto yarn = yarn_of(yarn_in, yarn_radius, stitches_dir, &report);
+      spdlog::info("emitted {} yarns ({} closed), {} control points, radius {} mm ({:.3f} s)", yarn.curves(),
+                   std::count(yarn.closed.begin(), yarn.closed.end(), 1), yarn.points.size(), yarn.radius, t.seconds());
+      spdlog::info("borders: {} cast-on stitches, {} bind-off pieces, {} turns, {} tied ends; {} cable faces", report.cast_on, report.bind_off,
+                   report.turns, report.tied_ends, report.cables);
+      write_yarn(yarn, yarn_out);
+      spdlog::info("wrote {}", yarn_out);
+      if (!yarn_tubes.empty()) {
+        relax::write_tube_obj(yarn, yarn_tubes);
+        spdlog::info("wrote {}", yarn_tubes);
+      }
+      if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
       return 0;
     }
     if (*devices) {

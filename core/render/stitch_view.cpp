@@ -5,6 +5,14 @@
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::render {
+namespace {
+/// Pieces that belong to no stitch type: cables teal, bind-off slate, turns pale.
+Eigen::Vector3f border_color(const std::string& piece) {
+  if (piece.rfind("cable", 0) == 0) return {0.2f, 0.75f, 0.8f};
+  if (piece == "bind-off") return {0.55f, 0.55f, 0.6f};
+  return {0.75f, 0.75f, 0.8f};
+}
+}  // namespace
 
 Eigen::Vector3f row_color(int row) {
   const double hue = std::fmod(row * 0.618033988749895, 1.0) * 6.0;
@@ -17,7 +25,7 @@ Eigen::Vector3f row_color(int row) {
 
 Eigen::Vector3f stitch_color(const std::string& type) {
   const mesh::StitchType* t = mesh::find_stitch_type(type);
-  if (!t) return {0.5f, 0.5f, 0.5f};
+  if (!t) return border_color(type);
   if (t->top == 2) return {0.35f, 0.75f, 0.35f};
   if (t->top == 3) return {0.15f, 0.5f, 0.2f};
   if (t->bottom == 2) return {0.85f, 0.3f, 0.25f};

@@ -283,39 +283,13 @@ StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fil
     if (f < 0 || f >= static_cast<int>(mesh.faces.size())) throw Error("", "face " + std::to_string(f), "does not exist");
   const auto rows = faces_by_row(mesh);
   const EdgeTable table = edge_table(mesh);
-  // The face below f: across its first bottom edge, where that edge is the other face's top edge.
-  const auto below = [&](int f) {
-    const auto& face = mesh.faces[f];
-    const auto& uses = table.at(edge_key(face.vertex(0), face.vertex(1)));
-    if (uses.count != 2) return -1;
-    const auto& other = uses.use[0].face == f ? uses.use[1] : uses.use[0];
-    return mesh.faces[other.face].is_top(other.local) ? other.face : -1;
-  };
-  // Rows bottom-up along the wale direction (Kahn's order over "row below"), so that each row lines its
-  // columns up with the stitches it is knitted into and counts its level from the cast-on.
-  const int nrows = static_cast<int>(rows.size());
-  std::vector<std::set<int>> rows_above(nrows);
-  std::vector<int> waiting(nrows, 0);
-  for (int r = 0; r < nrows; ++r) {
-    std::set<int> under;
-    for (int f : rows[r])
-      if (const int b = below(f); b >= 0 && mesh.faces[b].row != r) under.insert(mesh.faces[b].row);
-    waiting[r] = static_cast<int>(under.size());
-    for (int u : under) rows_above[u].insert(r);
-  }
-  std::vector<int> order;
-  for (int r = 0; r < nrows; ++r)
-    if (waiting[r] == 0) order.push_back(r);
-  for (size_t i = 0; i < order.size(); ++i)
-    for (int a : rows_above[order[i]])
-      if (--waiting[a] == 0) order.push_back(a);
-  for (int r = 0; r < nrows; ++r)
-    if (waiting[r] > 0) order.push_back(r);  // a cycle of opposite wale directions: any order will do
-
+  const auto below = [&](int f) { return stitch_below(mesh, table, f); };
+  // Rows bottom-up, so that each row lines its columns up with the stitches it is worked into.
+  const RowOrder ordered = row_order(mesh, rows, table);
+  const auto& level = ordered.level;
   std::vector<long> column(mesh.faces.size(), 0);
   std::vector<char> placed(mesh.faces.size(), 0);
-  std::vector<int> level(nrows, 0);
-  for (int r : order) {
+  for (int r : ordered.order) {
     const auto& row = rows[r];
     // Each stitch takes the column of the stitch below it; the second stitch above an increase (same stitch
     // below) takes the next column. Stitches with nothing placed below continue from their left neighbour.
@@ -328,7 +302,6 @@ StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fil
       const bool anchored = b >= 0 && placed[b] && (i == 0 || b != below(row[i - 1]));
       col = anchored ? column[b] : (i == 0 ? col : col + 1);
       column[f] = col;
-      if (b >= 0 && placed[b]) level[r] = std::max(level[r], level[mesh.faces[b].row] + 1);
     }
     for (int f : row) placed[f] = 1;
   }

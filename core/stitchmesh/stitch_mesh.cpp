@@ -144,6 +144,42 @@ std::vector<std::vector<int>> faces_by_row(const StitchMesh& mesh) {
   return by_row;
 }
 
+int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int f) {
+  const auto& face = mesh.faces[f];
+  const auto& uses = table.at(edge_key(face.vertex(0), face.vertex(1)));
+  if (uses.count != 2) return -1;
+  const auto& other = uses.use[0].face == f ? uses.use[1] : uses.use[0];
+  return mesh.faces[other.face].is_top(other.local) ? other.face : -1;
+}
+
+RowOrder row_order(const StitchMesh& mesh, const std::vector<std::vector<int>>& rows, const EdgeTable& table) {
+  // Kahn's order over "row below".
+  const int nrows = static_cast<int>(rows.size());
+  std::vector<std::set<int>> rows_above(nrows);
+  std::vector<int> waiting(nrows, 0);
+  for (int r = 0; r < nrows; ++r) {
+    std::set<int> under;
+    for (int f : rows[r])
+      if (const int b = stitch_below(mesh, table, f); b >= 0 && mesh.faces[b].row != r) under.insert(mesh.faces[b].row);
+    waiting[r] = static_cast<int>(under.size());
+    for (int u : under) rows_above[u].insert(r);
+  }
+  RowOrder out;
+  for (int r = 0; r < nrows; ++r)
+    if (waiting[r] == 0) out.order.push_back(r);
+  for (size_t i = 0; i < out.order.size(); ++i)
+    for (int a : rows_above[out.order[i]])
+      if (--waiting[a] == 0) out.order.push_back(a);
+  for (int r = 0; r < nrows; ++r)
+    if (waiting[r] > 0) out.order.push_back(r);
+  out.level.assign(nrows, 0);
+  for (int r : out.order)
+    for (int f : rows[r])
+      if (const int b = stitch_below(mesh, table, f); b >= 0 && mesh.faces[b].row != r)
+        out.level[r] = std::max(out.level[r], out.level[mesh.faces[b].row] + 1);
+  return out;
+}
+
 StitchStats stitch_stats(const StitchMesh& mesh) {
   StitchStats s;
   s.faces = static_cast<int>(mesh.faces.size());

@@ -87,7 +87,19 @@ struct StitchStats {
 };
 StitchStats stitch_stats(const StitchMesh& mesh);
 
-/// The faces of each stitch row, left to right along the wale edges (a ring row starts at its lowest face id).
+/// The faces of each stitch row, left to right along the wale edges (a ring row starts at a fixed face).
 std::vector<std::vector<int>> faces_by_row(const StitchMesh& mesh);
+
+/// The stitch below a face: across its first bottom edge, where that edge is the other face's top edge; -1 if none.
+int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int face);
+
+/// Rows bottom-up along the wale direction (each row after the rows its stitches are worked into), with
+/// each row's level: 0 for rows worked into nothing (cast-on), else one more than the highest row below.
+/// Rows in a cycle of opposite wale directions come last, in id order.
+struct RowOrder {
+  std::vector<int> order;
+  std::vector<int> level;
+};
+RowOrder row_order(const StitchMesh& mesh, const std::vector<std::vector<int>>& rows, const EdgeTable& table);
 
 }  // namespace skein::mesh

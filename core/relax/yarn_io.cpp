@@ -1,0 +1,268 @@
+#include "relax/yarn_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+namespace skein::relax {
+namespace {
+
+#pragma pack(push, 1)
+struct BccHeader {
+  char sign[3];
+  unsigned char byte_count;
+  char curve_type[2];
+  char dimensions;
+  char up_direction;
+  std::uint64_t curve_count;
+  std::uint64_t total_points;
+  char info[40];
+};
+#pragma pack(pop)
+static_assert(sizeof(BccHeader) == 64, "the .bcc header is 64 bytes");
+
+/// Catmull-Rom point between p1 and p2 at t (uniform).
+Eigen::Vector3d catmull_rom(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, const Eigen::Vector3d& p3, double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return 0.5 * ((2 * p1) + (-p0 + p2) * t + (2 * p0 - 5 * p1 + 4 * p2 - p3) * t2 + (-p0 + 3 * p1 - 3 * p2 + p3) * t3);
+}
+
+double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  // Closest points of two segments (Ericson, Real-Time Collision Detection §5.1.9).
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a <= 1e-30 && e <= 1e-30) return r.norm();
+  if (a <= 1e-30) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 1e-30) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 1e-30 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+      else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+  }
+  return (p0 + d1 * s - (q0 + d2 * t)).norm();
+}
+
+}  // namespace
+
+void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path) {
+  write_file_atomically(
+      path,
+      [&](std::ostream& out) {
+        BccHeader h{};
+        std::memcpy(h.sign, "BCC", 3);
+        h.byte_count = 0x44;
+        std::memcpy(h.curve_type, "C0", 2);
+        h.dimensions = 3;
+        h.up_direction = 1;  // y up
+        h.curve_count = static_cast<std::uint64_t>(yarn.curves());
+        h.total_points = yarn.points.size();
+        std::snprintf(h.info, sizeof h.info, "skein yarn, radius %.9g mm", yarn.radius);
+        out.write(reinterpret_cast<const char*>(&h), sizeof h);
+        for (int c = 0; c < yarn.curves(); ++c) {
+          const std::int32_t n = yarn.curve_size(c) * (yarn.closed[c] ? -1 : 1);
+          out.write(reinterpret_cast<const char*>(&n), 4);
+          for (int i = yarn.curve_start[c]; i < yarn.curve_start[c + 1]; ++i) {
+            const float xyz[3] = {static_cast<float>(yarn.points[i].x()), static_cast<float>(yarn.points[i].y()), static_cast<float>(yarn.points[i].z())};
+            out.write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+          }
+        }
+      },
+      true);
+}
+
+YarnCurves read_bcc(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(name, "", std::filesystem::exists(path) ? "cannot be opened for reading" : "no such file");
+  in.seekg(0, std::ios::end);
+  const std::uint64_t size = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0);
+  BccHeader h{};
+  if (size < sizeof h || !in.read(reinterpret_cast<char*>(&h), sizeof h)) throw Error(name, "byte 0", "shorter than the 64-byte .bcc header");
+  if (std::memcmp(h.sign, "BCC", 3) != 0) throw Error(name, "byte 0", "does not start with 'BCC'");
+  if (h.byte_count != 0x44) throw Error(name, "byte 3", "expected 0x44 (4-byte counts and floats)");
+  if (std::memcmp(h.curve_type, "C0", 2) != 0)
+    throw Error(name, "byte 4", std::string("curve type '") + std::string(h.curve_type, 2) + "' is not C0 (Catmull-Rom)");
+  if (h.dimensions != 3) throw Error(name, "byte 6", "dimensions " + std::to_string(int(h.dimensions)) + ", expected 3");
+  // Every curve takes at least 4 bytes and every point 12: bound the counts by the file size before allocating.
+  if (h.curve_count > (size - 64) / 4 || h.total_points > (size - 64) / 12)
+    throw Error(name, "byte 8", "curve or point count larger than the file can hold");
+  YarnCurves y;
+  y.points.reserve(h.total_points);
+  std::uint64_t offset = 64;
+  for (std::uint64_t c = 0; c < h.curve_count; ++c) {
+    std::int32_t n = 0;
+    if (!in.read(reinterpret_cast<char*>(&n), 4)) throw Error(name, "byte " + std::to_string(offset), "file ends inside curve " + std::to_string(c));
+    offset += 4;
+    const std::uint64_t count = static_cast<std::uint64_t>(n < 0 ? -static_cast<std::int64_t>(n) : n);
+    if (count == 0) throw Error(name, "byte " + std::to_string(offset - 4), "curve " + std::to_string(c) + " has no points");
+    if (y.points.size() + count > h.total_points)
+      throw Error(name, "byte " + std::to_string(offset - 4), "curve " + std::to_string(c) + " has more points than the header's total");
+    for (std::uint64_t i = 0; i < count; ++i) {
+      float xyz[3];
+      if (!in.read(reinterpret_cast<char*>(xyz), sizeof xyz))
+        throw Error(name, "byte " + std::to_string(offset), "file ends inside curve " + std::to_string(c));
+      if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+        throw Error(name, "byte " + std::to_string(offset), "a coordinate is not a finite number");
+      offset += 12;
+      y.points.emplace_back(xyz[0], xyz[1], xyz[2]);
+    }
+    y.curve_start.push_back(static_cast<int>(y.points.size()));
+    y.closed.push_back(n < 0);
+  }
+  if (y.points.size() != h.total_points)
+    throw Error(name, "header", "says " + std::to_string(h.total_points) + " points, the curves hold " + std::to_string(y.points.size()));
+  if (offset != size) throw Error(name, "byte " + std::to_string(offset), std::to_string(size - offset) + " bytes follow the last curve");
+  // skein writes "radius R mm" into the header's text; other tools' files leave the radius unknown (0).
+  const std::string info(h.info, strnlen(h.info, sizeof h.info));
+  if (const auto at = info.find("radius "); at != std::string::npos) y.radius = std::atof(info.c_str() + at + 7);
+  y.point_face.assign(y.points.size(), -1);
+  y.point_type.assign(y.points.size(), -1);
+  return y;
+}
+
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# skein yarn: " << yarn.curves() << " curves, " << yarn.points.size() << " control points, radius " << yarn.radius << " mm\n";
+    char buf[96];
+    for (const auto& p : yarn.points) {
+      std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", p.x(), p.y(), p.z());
+      out << buf;
+    }
+    for (int c = 0; c < yarn.curves(); ++c) {
+      out << "o yarn" << c << "\nl";
+      for (int i = yarn.curve_start[c]; i < yarn.curve_start[c + 1]; ++i) out << ' ' << i + 1;
+      if (yarn.closed[c]) out << ' ' << yarn.curve_start[c] + 1;
+      out << '\n';
+    }
+  });
+}
+
+std::vector<std::vector<Eigen::Vector3d>> sample_curves(const YarnCurves& yarn, int samples) {
+  std::vector<std::vector<Eigen::Vector3d>> out;
+  for (int c = 0; c < yarn.curves(); ++c) {
+    const int n = yarn.curve_size(c), s = yarn.curve_start[c];
+    const bool closed = yarn.closed[c];
+    const auto P = [&](int i) {
+      if (closed) return yarn.points[s + ((i % n) + n) % n];
+      return yarn.points[s + std::clamp(i, 0, n - 1)];
+    };
+    std::vector<Eigen::Vector3d> curve;
+    const int segments = closed ? n : n - 1;
+    for (int i = 0; i < segments; ++i)
+      for (int k = 0; k < samples; ++k) curve.push_back(catmull_rom(P(i - 1), P(i), P(i + 1), P(i + 2), static_cast<double>(k) / samples));
+    curve.push_back(closed ? curve.front() : P(n - 1));
+    out.push_back(std::move(curve));
+  }
+  return out;
+}
+
+void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
+  const auto curves = sample_curves(yarn, std::max(1, options.samples_per_segment));
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# skein yarn tubes: radius " << yarn.radius << " mm, " << options.sides << " sides\n";
+    char buf[96];
+    long base = 1;
+    for (size_t c = 0; c < curves.size(); ++c) {
+      const auto& pts = curves[c];
+      if (pts.size() < 2) continue;
+      out << "o yarn" << c << '\n';
+      // Parallel-transported frame along the curve, so the tube does not twist.
+      Eigen::Vector3d t0 = (pts[1] - pts[0]).normalized();
+      Eigen::Vector3d n0 = t0.unitOrthogonal();
+      for (size_t i = 0; i < pts.size(); ++i) {
+        const Eigen::Vector3d t = (pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1]).normalized();
+        n0 = (n0 - n0.dot(t) * t);
+        n0 = n0.norm() > 1e-9 ? n0.normalized() : t.unitOrthogonal();
+        const Eigen::Vector3d b0 = t.cross(n0);
+        for (int k = 0; k < options.sides; ++k) {
+          const double a = 2 * M_PI * k / options.sides;
+          const Eigen::Vector3d p = pts[i] + yarn.radius * (std::cos(a) * n0 + std::sin(a) * b0);
+          std::snprintf(buf, sizeof buf, "v %.6g %.6g %.6g\n", p.x(), p.y(), p.z());
+          out << buf;
+        }
+      }
+      for (size_t i = 0; i + 1 < pts.size(); ++i)
+        for (int k = 0; k < options.sides; ++k) {
+          const long a = base + static_cast<long>(i) * options.sides + k, b = base + static_cast<long>(i) * options.sides + (k + 1) % options.sides;
+          out << "f " << a << ' ' << b << ' ' << b + options.sides << ' ' << a + options.sides << '\n';
+        }
+      base += static_cast<long>(pts.size()) * options.sides;
+    }
+  });
+}
+
+YarnStats yarn_stats(const YarnCurves& yarn) {
+  YarnStats s;
+  s.curves = yarn.curves();
+  s.control_points = static_cast<int>(yarn.points.size());
+  s.radius = yarn.radius;
+  struct Segment {
+    int a, b, curve;
+  };
+  std::vector<Segment> segments;
+  double longest = 0;
+  for (int c = 0; c < yarn.curves(); ++c) {
+    s.closed_curves += yarn.closed[c];
+    const int first = yarn.curve_start[c], last = yarn.curve_start[c + 1];
+    for (int i = first; i + 1 < last; ++i) segments.push_back({i, i + 1, c});
+    if (yarn.closed[c] && last - first > 2) segments.push_back({last - 1, first, c});
+  }
+  for (const auto& seg : segments) {
+    const double len = (yarn.points[seg.b] - yarn.points[seg.a]).norm();
+    s.total_length += len;
+    longest = std::max(longest, len);
+  }
+  // Segments closer than `cell` have midpoints within cell + longest of each other: a grid of that size finds them.
+  s.min_segment_distance = std::numeric_limits<double>::infinity();
+  const double cell = std::max({longest + 4 * yarn.radius, 1e-6});
+  const auto key = [&](const Eigen::Vector3d& p) {
+    const auto q = (p / cell).array().floor().cast<std::int64_t>();
+    return (q.x() * 73856093) ^ (q.y() * 19349663) ^ (q.z() * 83492791);
+  };
+  std::unordered_multimap<std::int64_t, int> grid;
+  grid.reserve(segments.size());
+  std::vector<Eigen::Vector3d> mid(segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) {
+    mid[i] = 0.5 * (yarn.points[segments[i].a] + yarn.points[segments[i].b]);
+    grid.emplace(key(mid[i]), static_cast<int>(i));
+  }
+  const auto adjacent = [&](const Segment& x, const Segment& y) { return x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b; };
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const auto q = (mid[i] / cell).array().floor().cast<std::int64_t>();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const std::int64_t k = ((q.x() + dx) * 73856093) ^ ((q.y() + dy) * 19349663) ^ ((q.z() + dz) * 83492791);
+          const auto range = grid.equal_range(k);
+          for (auto it = range.first; it != range.second; ++it) {
+            const int j = it->second;
+            if (j <= static_cast<int>(i) || adjacent(segments[i], segments[j])) continue;
+            const auto& x = segments[i];
+            const auto& y = segments[j];
+            s.min_segment_distance = std::min(s.min_segment_distance, segment_distance(yarn.points[x.a], yarn.points[x.b], yarn.points[y.a], yarn.points[y.b]));
+          }
+        }
+  }
+  return s;
+}
+
+}  // namespace skein::relax

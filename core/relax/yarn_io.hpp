@@ -1,0 +1,42 @@
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::relax {
+
+using mesh::YarnCurves;
+
+/// Cem Yuksel's binary curve collection (.bcc): a 64-byte header ("BCC", 0x44, "C0" = Catmull-Rom, 3
+/// dimensions, up axis, uint64 curve count, uint64 point count, 40 bytes of text), then per curve an int32
+/// point count (negative for a closed loop) and its points as float xyz. Written atomically.
+void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path);
+/// Reads a .bcc written by skein or any tool of that layout; per-point face and type are unknown (-1).
+/// Throws skein::Error naming the file, the byte offset and the rule for malformed files.
+YarnCurves read_bcc(const std::filesystem::path& path);
+
+/// OBJ polylines (`l` records, one per curve; closed curves repeat their first point), as Blender imports them.
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path);
+
+/// A tube mesh around the Catmull-Rom curves, for any renderer.
+struct TubeOptions {
+  int sides = 8;              ///< polygon sides around the yarn
+  int samples_per_segment = 4;  ///< spline samples between two control points
+};
+void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
+
+/// Samples the Catmull-Rom curves (uniform parameterisation, as in the .bcc "C0" type).
+std::vector<std::vector<Eigen::Vector3d>> sample_curves(const YarnCurves& yarn, int samples_per_segment);
+
+/// Figures of a yarn set: counts, total control-polygon length, and the smallest distance between two
+/// non-adjacent control-polygon segments (segments sharing a point are adjacent), found with a uniform grid.
+struct YarnStats {
+  int curves = 0, closed_curves = 0, control_points = 0;
+  double total_length = 0;          ///< [mm], control polygon
+  double min_segment_distance = 0;  ///< [mm]; +inf when there are fewer than two non-adjacent segments
+  double radius = 0;
+};
+YarnStats yarn_stats(const YarnCurves& yarn);
+
+}  // namespace skein::relax

@@ -1,0 +1,53 @@
+#include "render/yarn_view.hpp"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "relax/yarn_io.hpp"
+#include "render/stitch_view.hpp"
+
+namespace skein::render {
+
+std::vector<Polygon> yarn_polygons(const mesh::YarnCurves& yarn, YarnColor color, int sides, int samples_per_segment) {
+  const auto curves = relax::sample_curves(yarn, samples_per_segment);
+  std::vector<Polygon> out;
+  for (int c = 0; c < static_cast<int>(curves.size()); ++c) {
+    const auto& pts = curves[c];
+    if (pts.size() < 2) continue;
+    const int n = yarn.curve_size(c), first = yarn.curve_start[c];
+    std::vector<std::vector<Eigen::Vector3d>> rings;
+    Eigen::Vector3d normal = (pts[1] - pts[0]).normalized().unitOrthogonal();
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const Eigen::Vector3d t = (pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1]).normalized();
+      normal -= normal.dot(t) * t;  // parallel transport: the tube does not twist
+      normal = normal.norm() > 1e-9 ? normal.normalized() : t.unitOrthogonal();
+      const Eigen::Vector3d binormal = t.cross(normal);
+      std::vector<Eigen::Vector3d> ring;
+      for (int k = 0; k < sides; ++k) {
+        const double a = 2 * M_PI * k / sides;
+        ring.push_back(pts[i] + yarn.radius * (std::cos(a) * normal + std::sin(a) * binormal));
+      }
+      rings.push_back(std::move(ring));
+    }
+    for (size_t i = 0; i + 1 < rings.size(); ++i) {
+      Eigen::Vector3f rgb;
+      if (color == YarnColor::Yarn || yarn.point_type.empty() || yarn.point_type[first] < 0) {
+        rgb = row_color(c);
+      } else {  // the type of the control point this stretch starts from
+        const int point = first + std::min(n - 1, static_cast<int>(i) / samples_per_segment);
+        const int type = yarn.point_type[point];
+        rgb = type >= 0 && type < static_cast<int>(yarn.type_names.size()) ? stitch_color(yarn.type_names[type]) : Eigen::Vector3f(0.6f, 0.6f, 0.6f);
+      }
+      for (int k = 0; k < sides; ++k) {
+        Polygon p;
+        p.points = {rings[i][k], rings[i][(k + 1) % sides], rings[i + 1][(k + 1) % sides], rings[i + 1][k]};
+        p.color = rgb;
+        out.push_back(std::move(p));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace skein::render

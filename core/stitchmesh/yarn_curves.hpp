@@ -1,0 +1,27 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace skein::mesh {
+
+/// Yarn as control points of Catmull-Rom curves (Yuksel 2012 §6.3), all curves back to back: a plain value
+/// that flows from emission to relaxation and export. Every control point knows its yarn (curve), the
+/// stitch face it was emitted for (-1 for border pieces) and that face's stitch type.
+struct YarnCurves {
+  std::vector<Eigen::Vector3d> points;   ///< [mm]
+  std::vector<int> curve_start{0};       ///< curve c holds points [curve_start[c], curve_start[c+1])
+  std::vector<char> closed;              ///< per curve: a closed loop (its last point joins its first)
+  std::vector<int> point_face;           ///< per point
+  std::vector<int> point_type;           ///< per point, index into type_names
+  std::vector<std::string> type_names;   ///< stitch type names ("k", "kp", "cable2x2", "bind-off", "turn")
+  double radius = 0;                     ///< yarn radius [mm]
+
+  int curves() const { return static_cast<int>(curve_start.size()) - 1; }
+  int curve_size(int c) const { return curve_start[c + 1] - curve_start[c]; }
+  /// The curve a point belongs to (its yarn).
+  int yarn_of(int point) const;
+};
+
+}  // namespace skein::mesh
