@@ -42,7 +42,12 @@ struct Loop {
   bool crossed = false; ///< the legs cross below the heads (x)
 };
 
-double leg_u(int j, int loops, bool right_leg) { return (j + (right_leg ? 0.64 : 0.36)) / loops; }
+/// u of a loop's legs where they pass the heads. Several loops share the middle 60% of the face, leaving
+/// lanes at the sides for the sinker and the heads' sides.
+double leg_u(int j, int loops, bool right_leg) {
+  const double spread = loops == 1 ? 1.0 : 0.6 / 0.76;
+  return 0.5 + spread * ((j + (right_leg ? 0.64 : 0.36)) / loops - 0.5);
+}
 
 /// The row's yarn through a face: nt + 1 pieces, L → loop 0 → loop 1 … → R.
 std::vector<YarnPiece> row_yarn(const std::vector<Loop>& loops) {
@@ -112,20 +117,27 @@ std::vector<YarnPiece> heads(int nb, const std::vector<int>& order, const std::v
     const int i = order[q];
     const double deeper = 2.0 * (nb - 1 - q);  // layers beyond the first, away from the legs
     const double sl = side_left + (side_left > 0 ? deeper : -deeper), sr = side_right + (side_right > 0 ? deeper : -deeper);
+    // From each foot the head rises to its layer at once, then runs sideways at a height of its own, so that
+    // where the heads of a decrease cross each other they are already 2 radii apart.
+    const double foot_a = (i + 0.3) / nb, foot_b = (i + 0.7) / nb, run = 0.08 + 0.05 * q;
     YarnPiece p;
     p.points.push_back(bottom(i, 0));
-    const double foot_a = (i + 0.3) / nb, foot_b = (i + 0.7) / nb;
-    if (foot_a > kSide + 0.1) p.points.push_back(at(0.5 * (foot_a + kSide), 0.08 + 0.05 * q, sl));  // low, toward the left side
+    p.points.push_back(at(foot_a, 0.04, sl));
+    p.points.push_back(at(foot_a, run, sl));
+    p.points.push_back(at(kSide, run, sl));
     p.points.push_back(at(kSide, kSinker, sl));
-    p.points.push_back(at(kSide + 0.03, 0.5, 0.5 * sl));
+    // Where a head turns from its side to its top, its depth is the mean of the two, so layers stay 2 apart.
+    const auto top_depth = [&](int j) { return -leg_at_head(loops[j].action) * (1 + 2.0 * q); };
+    p.points.push_back(at(kSide + 0.03, 0.5, 0.5 * (sl + top_depth(0))));
     for (int j = 0; j < nt; ++j) {
-      const double behind = -leg_at_head(loops[j].action) * (1 + 2.0 * q);
-      p.points.push_back(at(leg_u(j, nt, false), kHead, behind));
-      p.points.push_back(at(leg_u(j, nt, true), kHead, behind));
+      p.points.push_back(at(leg_u(j, nt, false), kHead, top_depth(j)));
+      p.points.push_back(at(leg_u(j, nt, true), kHead, top_depth(j)));
     }
-    p.points.push_back(at(1 - kSide - 0.03, 0.5, 0.5 * sr));
+    p.points.push_back(at(1 - kSide - 0.03, 0.5, 0.5 * (sr + top_depth(nt - 1))));
     p.points.push_back(at(1 - kSide, kSinker, sr));
-    if (foot_b < 1 - kSide - 0.1) p.points.push_back(at(0.5 * (foot_b + 1 - kSide), 0.08 + 0.05 * (nb - 1 - q), sr));
+    p.points.push_back(at(1 - kSide, run, sr));
+    p.points.push_back(at(foot_b, run, sr));
+    p.points.push_back(at(foot_b, 0.04, sr));
     p.points.push_back(bottom(i, 1));
     pieces.push_back(p);
   }

@@ -138,6 +138,7 @@ json yarn_json(const mesh::YarnCurves& yarn) {
           {"control_points", s.control_points},
           {"total_length", s.total_length},
           {"min_segment_distance", std::isfinite(s.min_segment_distance) ? json(s.min_segment_distance) : json(nullptr)},
+          {"closest_points", {s.closest.first, s.closest.second}},
           {"radius", s.radius}};
 }
 

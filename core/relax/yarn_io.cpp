@@ -217,50 +217,66 @@ YarnStats yarn_stats(const YarnCurves& yarn) {
   s.radius = yarn.radius;
   struct Segment {
     int a, b, curve;
+    double from, to;  ///< arc length along the curve's control polygon at its ends
   };
   std::vector<Segment> segments;
+  std::vector<double> curve_length(yarn.curves(), 0);
   double longest = 0;
   for (int c = 0; c < yarn.curves(); ++c) {
     s.closed_curves += yarn.closed[c];
     const int first = yarn.curve_start[c], last = yarn.curve_start[c + 1];
-    for (int i = first; i + 1 < last; ++i) segments.push_back({i, i + 1, c});
-    if (yarn.closed[c] && last - first > 2) segments.push_back({last - 1, first, c});
+    const auto add = [&](int a, int b) {
+      const double len = (yarn.points[b] - yarn.points[a]).norm();
+      segments.push_back({a, b, c, curve_length[c], curve_length[c] + len});
+      curve_length[c] += len;
+      longest = std::max(longest, len);
+    };
+    for (int i = first; i + 1 < last; ++i) add(i, i + 1);
+    if (yarn.closed[c] && last - first > 2) add(last - 1, first);
+    s.total_length += curve_length[c];
   }
-  for (const auto& seg : segments) {
-    const double len = (yarn.points[seg.b] - yarn.points[seg.a]).norm();
-    s.total_length += len;
-    longest = std::max(longest, len);
-  }
-  // Segments closer than `cell` have midpoints within cell + longest of each other: a grid of that size finds them.
+  // Each segment's box, padded by r, goes into every grid cell it touches; two segments closer than 2r have
+  // padded boxes that meet, so they share a cell. Pairs are tested cell by cell.
   s.min_segment_distance = std::numeric_limits<double>::infinity();
-  const double cell = std::max({longest + 4 * yarn.radius, 1e-6});
-  const auto key = [&](const Eigen::Vector3d& p) {
-    const auto q = (p / cell).array().floor().cast<std::int64_t>();
-    return (q.x() * 73856093) ^ (q.y() * 19349663) ^ (q.z() * 83492791);
+  if (segments.empty()) return s;
+  std::vector<double> lengths;
+  for (const auto& seg : segments) lengths.push_back(seg.to - seg.from);
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const double pad = yarn.radius, cell = std::max({3 * lengths[lengths.size() / 2], 4 * yarn.radius, 1e-6});
+  std::vector<std::pair<std::uint64_t, int>> entries;
+  entries.reserve(segments.size() * 4);
+  const auto cell_key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) | (static_cast<std::uint64_t>(y & 0x1fffff) << 21) | static_cast<std::uint64_t>(z & 0x1fffff);
   };
-  std::unordered_multimap<std::int64_t, int> grid;
-  grid.reserve(segments.size());
-  std::vector<Eigen::Vector3d> mid(segments.size());
   for (size_t i = 0; i < segments.size(); ++i) {
-    mid[i] = 0.5 * (yarn.points[segments[i].a] + yarn.points[segments[i].b]);
-    grid.emplace(key(mid[i]), static_cast<int>(i));
+    const Eigen::Vector3d &a = yarn.points[segments[i].a], &b = yarn.points[segments[i].b];
+    const Eigen::Array3d lo = (a.array().min(b.array()) - pad) / cell, hi = (a.array().max(b.array()) + pad) / cell;
+    for (auto x = static_cast<std::int64_t>(std::floor(lo.x())); x <= static_cast<std::int64_t>(std::floor(hi.x())); ++x)
+      for (auto y = static_cast<std::int64_t>(std::floor(lo.y())); y <= static_cast<std::int64_t>(std::floor(hi.y())); ++y)
+        for (auto z = static_cast<std::int64_t>(std::floor(lo.z())); z <= static_cast<std::int64_t>(std::floor(hi.z())); ++z)
+          entries.emplace_back(cell_key(x, y, z), static_cast<int>(i));
   }
-  const auto adjacent = [&](const Segment& x, const Segment& y) { return x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b; };
-  for (size_t i = 0; i < segments.size(); ++i) {
-    const auto q = (mid[i] / cell).array().floor().cast<std::int64_t>();
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const std::int64_t k = ((q.x() + dx) * 73856093) ^ ((q.y() + dy) * 19349663) ^ ((q.z() + dz) * 83492791);
-          const auto range = grid.equal_range(k);
-          for (auto it = range.first; it != range.second; ++it) {
-            const int j = it->second;
-            if (j <= static_cast<int>(i) || adjacent(segments[i], segments[j])) continue;
-            const auto& x = segments[i];
-            const auto& y = segments[j];
-            s.min_segment_distance = std::min(s.min_segment_distance, segment_distance(yarn.points[x.a], yarn.points[x.b], yarn.points[y.a], yarn.points[y.b]));
-          }
-        }
+  std::sort(entries.begin(), entries.end());
+  // Adjacent: sharing a point, or less than 2r apart along one yarn (a tight bend is not a contact).
+  const double near = 2 * yarn.radius;
+  const auto adjacent = [&](const Segment& x, const Segment& y) {
+    if (x.a == y.a || x.a == y.b || x.b == y.a || x.b == y.b) return true;
+    if (x.curve != y.curve) return false;
+    const double gap = std::max(y.from - x.to, x.from - y.to);
+    const double around = yarn.closed[x.curve] ? curve_length[x.curve] - (std::max(x.to, y.to) - std::min(x.from, y.from)) : gap;
+    return std::min(gap, around) < near;
+  };
+  for (size_t begin = 0; begin < entries.size();) {
+    size_t end = begin;
+    while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
+    for (size_t i = begin; i < end; ++i)
+      for (size_t j = i + 1; j < end; ++j) {
+        const Segment &x = segments[entries[i].second], &y = segments[entries[j].second];
+        if (adjacent(x, y)) continue;
+        const double d = segment_distance(yarn.points[x.a], yarn.points[x.b], yarn.points[y.a], yarn.points[y.b]);
+        if (d < s.min_segment_distance) s.min_segment_distance = d, s.closest = {x.a, y.a};
+      }
+    begin = end;
   }
   return s;
 }

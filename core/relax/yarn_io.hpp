@@ -1,6 +1,7 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "stitchmesh/yarn_curves.hpp"
 
@@ -30,11 +31,13 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
 std::vector<std::vector<Eigen::Vector3d>> sample_curves(const YarnCurves& yarn, int samples_per_segment);
 
 /// Figures of a yarn set: counts, total control-polygon length, and the smallest distance between two
-/// non-adjacent control-polygon segments (segments sharing a point are adjacent), found with a uniform grid.
+/// non-adjacent control-polygon segments, found with a uniform grid. Segments are adjacent when they share a
+/// point or lie less than 2r apart along one yarn (a tight bend of one yarn is not a contact).
 struct YarnStats {
   int curves = 0, closed_curves = 0, control_points = 0;
   double total_length = 0;          ///< [mm], control polygon
-  double min_segment_distance = 0;  ///< [mm]; +inf when there are fewer than two non-adjacent segments
+  double min_segment_distance = 0;  ///< [mm]; exact below 2r (where yarns overlap); +inf when no two come that close
+  std::pair<int, int> closest{-1, -1};  ///< first points of the two closest segments
   double radius = 0;
 };
 YarnStats yarn_stats(const YarnCurves& yarn);

@@ -1,0 +1,170 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "common/error.hpp"
+#include "garments.hpp"
+#include "relax/yarn_io.hpp"
+#include "stitch_fixtures.hpp"
+#include "stitchmesh/edits.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/stitch_types.hpp"
+#include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using skein::testing::all_faces;
+using skein::testing::error_of;
+
+namespace {
+/// Deepest overlap the initial (unrelaxed) curves of well-shaped stitches may have between two non-adjacent
+/// control-polygon segments, in yarn radii: 2r - distance <= kOverlapAllowance * r (docs/stitch-library.md).
+constexpr double kOverlapAllowance = 1.25;
+
+mesh::StitchMesh stitched(const mesh::InputMesh& m, mesh::StitchSize size = {12, 10}) {
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  return mesh::tessellate(m, l, mesh::initial_values(m, l, size));
+}
+
+/// A swatch with one face of each increase and decrease shape in its middle rows, made by splitting top edges.
+mesh::StitchMesh swatch_with_shapes() {
+  auto s = stitched(models::swatch());
+  const auto rows = mesh::faces_by_row(s);
+  const auto split_top = [&](int face, int times) {
+    for (int i = 0; i < times; ++i) {
+      const auto& f = s.faces[face];
+      s = mesh::split_course_edge(s, f.vertex(f.bottom + 1), f.vertex(f.bottom + 2));
+    }
+  };
+  split_top(rows[3][3], 1);  // a 1-2 below, a 2-1 above
+  split_top(rows[6][6], 2);  // a 1-3 below, a 3-1 above
+  return s;
+}
+
+/// How many control points sit at each crossing place of the edge u-v (crossings are emitted exactly there).
+int points_at(const mesh::YarnCurves& y, const Eigen::Vector3d& p) {
+  int n = 0;
+  for (const auto& q : y.points) n += (q - p).norm() < 1e-9;
+  return n;
+}
+
+void expect_continuous(const mesh::StitchMesh& s, const mesh::YarnCurves& y, const std::string& what) {
+  // Every interior wale edge is crossed once, every interior course edge twice, at the conventional places.
+  int checked = 0;
+  for (const auto& [key, uses] : mesh::edge_table(s)) {
+    if (uses.count != 2 || checked > 60) continue;
+    const int lo = static_cast<int>(key >> 32), hi = static_cast<int>(key & 0xffffffffu);
+    const auto& f = s.faces[uses.use[0].face];
+    const Eigen::Vector3d a = s.vertices[lo], b = s.vertices[hi];
+    if (s.cables.count({lo, hi})) continue;
+    if (f.is_wale(uses.use[0].local)) {
+      EXPECT_EQ(points_at(y, a + mesh::kWaleCrossing * (b - a)) + points_at(y, a + (1 - mesh::kWaleCrossing) * (b - a)), 1) << what;
+    } else {
+      EXPECT_EQ(points_at(y, a + mesh::kCourseSlots[0] * (b - a)), 1) << what;
+      EXPECT_EQ(points_at(y, a + mesh::kCourseSlots[1] * (b - a)), 1) << what;
+    }
+    ++checked;
+  }
+  ASSERT_EQ(y.point_face.size(), y.points.size());
+  ASSERT_EQ(y.point_type.size(), y.points.size());
+  for (size_t i = 0; i < y.points.size(); ++i) {
+    EXPECT_LT(y.point_face[i], static_cast<int>(s.faces.size()));
+    ASSERT_GE(y.point_type[i], 0);
+    ASSERT_LT(y.point_type[i], static_cast<int>(y.type_names.size()));
+  }
+}
+
+double overlap_depth(const mesh::YarnCurves& y) { return (2 * y.radius - relax::yarn_stats(y).min_segment_distance) / y.radius; }
+}  // namespace
+
+TEST(YarnEmission, StockinetteSwatchIsOneYarnTurningAtTheSides) {
+  const auto s = stitched(models::swatch());
+  mesh::EmitReport report;
+  const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}, &report);
+  EXPECT_EQ(y.curves(), 1);  // Yuksel Fig. 6: one yarn, tied at two corners
+  EXPECT_EQ(y.closed[0], 0);
+  EXPECT_EQ(report.tied_ends, 2);
+  const int rows = static_cast<int>(mesh::faces_by_row(s).size()), columns = static_cast<int>(mesh::faces_by_row(s)[0].size());
+  EXPECT_EQ(report.turns, rows - 1);
+  EXPECT_EQ(report.cast_on, columns);
+  EXPECT_EQ(report.bind_off, columns);
+  expect_continuous(s, y, "stockinette");
+  EXPECT_LE(overlap_depth(y), kOverlapAllowance);
+}
+
+TEST(YarnEmission, EveryStitchTypeJoinsUpOnASwatch) {
+  const auto base = swatch_with_shapes();
+  for (const auto& type : mesh::stitch_types()) {
+    auto s = base;
+    for (auto& f : s.faces)
+      if (f.bottom == type.bottom && f.top() == type.top) f.type = type.name;
+    const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {});
+    EXPECT_EQ(y.curves(), 1) << type.name;
+    EXPECT_EQ(std::count(y.closed.begin(), y.closed.end(), 1), 0) << type.name;
+    expect_continuous(s, y, type.name);
+    const double depth = overlap_depth(y);
+    EXPECT_LE(depth, kOverlapAllowance) << type.name;
+    std::printf("  %-6s overlap depth %.2f r\n", type.name.c_str(), depth);
+  }
+}
+
+TEST(YarnEmission, TubeRowsCloseIntoLoops) {
+  const auto s = stitched(models::tube());
+  mesh::EmitReport report;
+  const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}, &report);
+  const int rows = static_cast<int>(mesh::faces_by_row(s).size());
+  EXPECT_EQ(y.curves(), rows);  // ring rows (Yuksel §4.2, Fig. 7b): each row its own closed yarn
+  EXPECT_EQ(std::count(y.closed.begin(), y.closed.end(), 1), rows);
+  EXPECT_EQ(report.tied_ends, 0);
+  expect_continuous(s, y, "tube");
+}
+
+TEST(YarnEmission, OppositeWaleDirectionsMakeClosedLoops) {
+  const auto m = models::tube();
+  auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  mesh::flip_row(l, 2);
+  const auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {12, 10}));
+  const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {});
+  const auto plain = mesh::emit_yarn(stitched(m), mesh::StitchLibrary::bundled(), {});
+  // Yuksel §4.4, Fig. 8: where two rows meet top to top or bottom to bottom, their loops close on each other.
+  EXPECT_GT(std::count(y.closed.begin(), y.closed.end(), 1), std::count(plain.closed.begin(), plain.closed.end(), 1));
+  expect_continuous(s, y, "flipped row");
+}
+
+TEST(YarnEmission, CableFaceCrossesLoops) {
+  auto s = stitched(models::swatch());
+  s = mesh::mark_cable(s, skein::testing::top_path(s, 5, 3, 7), 2, 1);  // 2 over 2
+  mesh::EmitReport report;
+  const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}, &report);
+  EXPECT_EQ(report.cables, 1);
+  EXPECT_EQ(y.curves(), 1);
+  EXPECT_NE(std::find(y.type_names.begin(), y.type_names.end(), "cable2x2"), y.type_names.end());
+  expect_continuous(s, y, "cable");
+  // A cable of 4 over 1 has no model.
+  auto wide = stitched(models::swatch());
+  wide = mesh::mark_cable(wide, skein::testing::top_path(wide, 5, 2, 7), 4, 1);
+  EXPECT_NE(error_of([&] { mesh::emit_yarn(wide, mesh::StitchLibrary::bundled(), {}); }).find("4 over 1 stitches has no model"), std::string::npos);
+}
+
+TEST(YarnEmission, EveryBundledGarmentEmits) {
+  for (const auto& g : models::garments()) {
+    const auto s = stitched(g.make(), {});
+    const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {});
+    EXPECT_GT(y.points.size(), 10 * s.faces.size()) << g.name;
+    expect_continuous(s, y, g.name);
+    // Stitches sheared by the input mesh (where sleeves and thumb join) overlap deeper until mesh relaxation
+    // evens them out; but no two centrelines may meet, or yarn relaxation could not keep the yarns apart.
+    const auto stats = relax::yarn_stats(y);
+    EXPECT_GT(stats.min_segment_distance, 0.0) << g.name;
+    std::printf("  %-9s %zu control points, overlap depth %.2f r\n", g.name.c_str(), y.points.size(), overlap_depth(y));
+  }
+}
+
+TEST(YarnEmission, RefusesWhatItCannotEmit) {
+  auto s = stitched(models::swatch());
+  EXPECT_THROW(mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {0.0}), Error);
+  s.faces[0].type = "kp";  // does not fit a 1-1 face: invalid mesh
+  EXPECT_NE(error_of([&] { mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}); }).find("not valid"), std::string::npos);
+}

@@ -1,0 +1,120 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "garments.hpp"
+#include "relax/yarn_io.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using skein::testing::error_of;
+using skein::testing::ScratchDir;
+
+namespace {
+mesh::YarnCurves tube_yarn() {
+  const auto m = models::tube();
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  return mesh::emit_yarn(mesh::tessellate(m, l, mesh::initial_values(m, l, {12, 10})), mesh::StitchLibrary::bundled(), {});
+}
+std::string bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+TEST(YarnIo, BccRoundTripIsBitExact) {
+  ScratchDir dir;
+  const auto y = tube_yarn();
+  relax::write_bcc(y, dir / "a.bcc");
+  const auto back = relax::read_bcc(dir / "a.bcc");
+  relax::write_bcc(back, dir / "b.bcc");
+  EXPECT_EQ(bytes(dir / "a.bcc"), bytes(dir / "b.bcc"));
+  ASSERT_EQ(back.points.size(), y.points.size());
+  EXPECT_EQ(back.curve_start, y.curve_start);
+  EXPECT_EQ(back.closed, y.closed);
+  EXPECT_DOUBLE_EQ(back.radius, y.radius);
+  for (size_t i = 0; i < y.points.size(); ++i)
+    EXPECT_EQ(back.points[i].cast<float>(), y.points[i].cast<float>());
+  // The layout: 64-byte header, then int32 counts (negative = closed) and float xyz.
+  const std::string b = bytes(dir / "a.bcc");
+  EXPECT_EQ(b.substr(0, 3), "BCC");
+  EXPECT_EQ(static_cast<unsigned char>(b[3]), 0x44);
+  EXPECT_EQ(b.substr(4, 2), "C0");
+  std::int32_t first = 0;
+  std::memcpy(&first, b.data() + 64, 4);
+  EXPECT_EQ(first, -y.curve_size(0));
+  EXPECT_EQ(b.size(), 64 + 4 * y.curves() + 12 * y.points.size());
+}
+
+TEST(YarnIo, MalformedBccFilesAreRejected) {
+  ScratchDir dir;
+  const auto y = tube_yarn();
+  relax::write_bcc(y, dir / "good.bcc");
+  const std::string good = bytes(dir / "good.bcc");
+  const auto bad = [&](const std::string& name, std::string content, const std::string& rule) {
+    const auto p = dir.write(name, content);
+    const std::string msg = error_of([&] { relax::read_bcc(p); });
+    EXPECT_NE(msg.find(name), std::string::npos) << msg;
+    EXPECT_NE(msg.find(rule), std::string::npos) << name << ": " << msg;
+  };
+  bad("short.bcc", good.substr(0, 40), "shorter than the 64-byte");
+  std::string s = good;
+  s[0] = 'X';
+  bad("magic.bcc", s, "does not start with 'BCC'");
+  s = good, s[3] = 0x48;
+  bad("width.bcc", s, "expected 0x44");
+  s = good, s[4] = 'P', s[5] = 'L';
+  bad("type.bcc", s, "is not C0");
+  s = good, s[6] = 2;
+  bad("dims.bcc", s, "dimensions 2");
+  s = good;
+  const std::uint64_t huge = 1ull << 40;
+  std::memcpy(s.data() + 8, &huge, 8);
+  bad("count.bcc", s, "larger than the file can hold");
+  bad("truncated.bcc", good.substr(0, good.size() - 7), "file ends inside curve");
+  bad("trailing.bcc", good + "xyz", "bytes follow the last curve");
+  s = good;
+  const float nan = std::nanf("");
+  std::memcpy(s.data() + 68, &nan, 4);
+  bad("nan.bcc", s, "not a finite number");
+  EXPECT_NE(error_of([&] { relax::read_bcc(dir / "none.bcc"); }).find("no such file"), std::string::npos);
+}
+
+TEST(YarnIo, ObjPolylinesAndTubes) {
+  ScratchDir dir;
+  const auto y = tube_yarn();
+  relax::write_obj_polylines(y, dir / "y.obj");
+  const std::string obj = bytes(dir / "y.obj");
+  EXPECT_EQ(std::count(obj.begin(), obj.end(), 'l'), y.curves() + static_cast<long>(std::count(obj.begin(), obj.end(), 'l')) - y.curves());
+  size_t lines = 0, vertices = 0;
+  std::istringstream in(obj);
+  for (std::string line; std::getline(in, line);) lines += line.rfind("l ", 0) == 0, vertices += line.rfind("v ", 0) == 0;
+  EXPECT_EQ(lines, static_cast<size_t>(y.curves()));
+  EXPECT_EQ(vertices, y.points.size());
+  relax::write_tube_obj(y, dir / "t.obj", {6, 2});
+  const auto tubes = mesh::load_mesh(dir / "t.obj");  // a mesh any tool reads
+  EXPECT_GT(tubes.num_faces(), static_cast<int>(6 * y.points.size()));
+}
+
+TEST(YarnIo, StatsCountAndMeasure) {
+  mesh::YarnCurves y;
+  y.radius = 0.5;
+  // Two straight yarns 3 mm apart, and a closed square.
+  y.points = {{0, 0, 0}, {10, 0, 0}, {0, 3, 0}, {10, 3, 0}, {0, 10, 0}, {1, 10, 0}, {1, 11, 0}, {0, 11, 0}};
+  y.curve_start = {0, 2, 4, 8};
+  y.closed = {0, 0, 1};
+  const auto s = relax::yarn_stats(y);
+  EXPECT_EQ(s.curves, 3);
+  EXPECT_EQ(s.closed_curves, 1);
+  EXPECT_EQ(s.control_points, 8);
+  EXPECT_DOUBLE_EQ(s.total_length, 10 + 10 + 4);
+  EXPECT_NEAR(s.min_segment_distance, 1.0, 1e-12);  // the square's opposite sides
+}
