@@ -103,17 +103,24 @@ void write_json(const json& j, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
-void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color) {
-  Stopwatch t;
+/// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches).
+render::View view_named(const std::string& name) {
   render::View view;
+  if (name == "flat") view.directions = {{0, 0, -1}, {0, 0, 1}};
+  return view;
+}
+
+void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment") {
+  Stopwatch t;
+  render::View view = view_named(views);
   view.outlines = false;
   render::write_png(render::draw(render::yarn_polygons(yarn, color), view), path);
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
-void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color) {
+void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views = "garment") {
   Stopwatch t;
-  render::write_png(render::draw(render::stitch_polygons(sm, color), render::View{}), path);
+  render::write_png(render::draw(render::stitch_polygons(sm, color), view_named(views)), path);
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
@@ -278,6 +285,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--yarn-radius", render_radius, "yarn radius [mm] for --yarn (default: a tenth of the stitch width)");
   render_cmd->add_option("--color", render_color, "row or type for stitch meshes; type or yarn for yarn")
       ->check(CLI::IsMember({"row", "type", "yarn"}));
+  std::string render_views = "garment";
+  render_cmd->add_option("--views", render_views, "garment (three-quarter front, back-side) or flat (front, back)")
+      ->check(CLI::IsMember({"garment", "flat"}));
 
   // skein devices
   auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
@@ -417,12 +427,13 @@ int main(int argc, char** argv) {
     if (*render_cmd) {
       check_writable(render_out);
       if (render_yarn || is_bcc(render_in)) {
-        render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out, render_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
+        render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out,
+                          render_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType, render_views);
         return 0;
       }
       const auto project = mesh::read_project(render_in);
       if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
-      render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row);
+      render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row, render_views);
       return 0;
     }
     if (*yarn_cmd) {

@@ -110,3 +110,34 @@ TEST(Cli, LabelRowByRowByHand) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("not a border edge"), std::string::npos) << bad.output;
 }
+
+TEST(Cli, YarnExportStatsAndRender) {
+  ScratchDir dir;
+  const auto project = (dir / "tube.skein").string();
+  ASSERT_EQ(run_skein("stitch " + kModels + "/tube.obj --auto-label --stitch-size 12 -o " + project).status, 0);
+  const auto r = run_skein("yarn " + project + " -o " + (dir / "y.bcc").string() + " --tubes " + (dir / "t.obj").string() + " --png " +
+                           (dir / "y.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("closed"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "t.obj"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "y.png"));
+  const auto stats = run_skein("stats " + (dir / "y.bcc").string() + " --json");
+  ASSERT_EQ(stats.status, 0) << stats.output;
+  for (const char* key : {"\"curves\"", "\"closed_curves\"", "\"control_points\"", "\"total_length\"", "\"min_segment_distance\""})
+    EXPECT_NE(stats.output.find(key), std::string::npos) << key << "\n" << stats.output;
+  ASSERT_EQ(run_skein("yarn " + project + " -o " + (dir / "y.obj").string()).status, 0);
+  EXPECT_NE(slurp(dir / "y.obj").find("\nl "), std::string::npos);
+  ASSERT_EQ(run_skein("render " + (dir / "y.bcc").string() + " --color yarn -o " + (dir / "r.png").string()).status, 0);
+  // Bad inputs: a yarn format skein does not write, a broken .bcc, a project without a stitch mesh.
+  const auto ply = run_skein("yarn " + project + " -o " + (dir / "y.ply").string());
+  EXPECT_EQ(ply.status, 2);
+  EXPECT_NE(ply.output.find(".bcc or .obj"), std::string::npos) << ply.output;
+  const auto broken = dir.write("broken.bcc", "BCC\x44" "C0");
+  const auto bad = run_skein("stats " + broken.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("64-byte"), std::string::npos) << bad.output;
+  const auto labels_only = run_skein("yarn " + kModels + "/tube.skein -o " + (dir / "z.bcc").string());
+  EXPECT_EQ(labels_only.status, 2);
+  EXPECT_NE(labels_only.output.find("no stitch mesh"), std::string::npos) << labels_only.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "z.bcc"));
+}

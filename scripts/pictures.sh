@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Remakes the pictures under docs/images from the bundled models and the stitch library (after scripts/build.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+skein=build/bin/skein
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+out=docs/images
+"$skein" -q stitch models/sweater.obj --labels models/sweater.skein -o "$tmp/sweater.skein" --png "$out/sweater-rows.png"
+"$skein" -q edit "$tmp/sweater.skein" --fill rib2x2 --near-border 12 -o "$tmp/sweater.skein" --png-types "$out/sweater-stitch-types.png"
+"$skein" -q render "$tmp/sweater.skein" --yarn -o "$out/sweater-yarn.png"
+build/bin/skein-sampler "$tmp" >/dev/null
+"$skein" -q render "$tmp/sampler.skein" --views flat --color type -o "$out/sampler-stitch-types.png"
+"$skein" -q render "$tmp/sampler.skein" --yarn --views flat -o "$out/sampler-yarn.png"
+"$skein" -q render "$tmp/cable.skein" --yarn --views flat -o "$out/cable-yarn.png"
+"$skein" -q stitch models/swatch.obj --auto-label --stitch-size 40 --stitch-height 33.4 -o "$tmp/close.skein"
+"$skein" -q render "$tmp/close.skein" --yarn --views flat -o "$out/swatch-close-up.png"
+echo "wrote $(ls $out | tr '\n' ' ')"
