@@ -28,18 +28,6 @@ Project swatch(double stitch) {
   return p;
 }
 
-/// Top-edge path of stitches [from, to) of a row, left to right.
-std::vector<int> top_path(const StitchMesh& s, int row, int from, int to) {
-  const auto rows = faces_by_row(s);
-  std::vector<int> path;
-  for (int i = from; i < to; ++i) {
-    const auto& f = s.faces[rows[row][i]];
-    if (path.empty()) path.push_back(f.vertex(f.size() - 1));
-    path.push_back(f.vertex(f.bottom + 1));
-  }
-  return path;
-}
-
 Project sampler() {
   Project p = swatch(6);  // 20 stitches by 20 rows
   StitchMesh& s = *p.stitch;
@@ -81,7 +69,7 @@ Project cable_panel() {
   const auto rows = faces_by_row(s);
   for (size_t r = 3; r + 2 < rows.size(); r += 6)
     for (int col = 0; col + 4 <= static_cast<int>(rows[r].size()); col += 6)
-      if (s.faces[rows[r][col]].type == "k") s = mark_cable(s, top_path(s, static_cast<int>(r), col, col + 4), 2, 1);
+      if (s.faces[rows[r][col]].type == "k") s = mark_cable(s, top_edge_path(s, static_cast<int>(r), col, col + 4), 2, 1);
   return p;
 }
 

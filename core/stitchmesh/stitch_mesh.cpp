@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "common/error.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::mesh {
@@ -142,6 +143,19 @@ std::vector<std::vector<int>> faces_by_row(const StitchMesh& mesh) {
     }
   }
   return by_row;
+}
+
+std::vector<int> top_edge_path(const StitchMesh& mesh, int row, int from, int to) {
+  const auto rows = faces_by_row(mesh);
+  if (row < 0 || row >= static_cast<int>(rows.size()) || from < 0 || to > static_cast<int>(rows[row].size()) || from >= to)
+    throw Error("", "row " + std::to_string(row), "has no stitches " + std::to_string(from) + " to " + std::to_string(to - 1));
+  std::vector<int> path;
+  for (int i = from; i < to; ++i) {
+    const auto& f = mesh.faces[rows[row][i]];
+    if (path.empty()) path.push_back(f.vertex(f.size() - 1));
+    path.push_back(f.vertex(f.bottom + 1));
+  }
+  return path;
 }
 
 int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int f) {

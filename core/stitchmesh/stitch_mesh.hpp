@@ -90,6 +90,10 @@ StitchStats stitch_stats(const StitchMesh& mesh);
 /// The faces of each stitch row, left to right along the wale edges (a ring row starts at a fixed face).
 std::vector<std::vector<int>> faces_by_row(const StitchMesh& mesh);
 
+/// The vertices along the top edges of stitches [from, to) of a row (positions in faces_by_row), left to
+/// right: the path a cable mark takes. Throws skein::Error when the row or the stitches do not exist.
+std::vector<int> top_edge_path(const StitchMesh& mesh, int row, int from, int to);
+
 /// The stitch below a face: across its first bottom edge, where that edge is the other face's top edge; -1 if none.
 int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int face);
 

@@ -150,6 +150,31 @@ private:
     m_pieces.push_back(std::move(piece));
   }
 
+  /// Adds a model's pieces: interior points through `place(uvh)`, crossings through `node(crossing)`;
+  /// a piece with a crossing for which `drop(crossing, node)` holds is left out.
+  template <class Place, class Node, class Drop>
+  void add_model(const StitchModel& model, int face, int type, Place place, Node node, Drop drop) {
+    for (const auto& mp : model.pieces) {
+      Piece piece;
+      piece.face = face;
+      piece.type = type;
+      bool dropped = false;
+      for (size_t i = 0; i < mp.points.size(); ++i) {
+        const auto& p = mp.points[i];
+        if (!p.crossing) {
+          piece.points.push_back(place(p.uvh));
+          continue;
+        }
+        const int id = node(*p.crossing);
+        dropped |= drop(*p.crossing, id);
+        piece.points.push_back(m_node_pos[id]);
+        (i == 0 ? piece.start : piece.end) = id;
+      }
+      if (!dropped) add_piece(std::move(piece));
+    }
+  }
+  static bool keep(const Crossing&, int) { return false; }
+
   // ---- faces --------------------------------------------------------------------------------------------
   bool bottom_on_border(int f) const {
     const auto& face = m_mesh.faces[f];
@@ -168,25 +193,10 @@ private:
       throw Error("", "face " + std::to_string(f), "stitch model '" + name + "' does not fit the face's shape");
     report.cast_on += cast_on;
     const FaceFrame fr = frame(f);
-    const int type = type_id(face.type);
-    for (const auto& mp : model.pieces) {
-      Piece piece;
-      piece.face = f;
-      piece.type = type;
-      bool dropped = false;
-      for (size_t i = 0; i < mp.points.size(); ++i) {
-        const auto& p = mp.points[i];
-        if (!p.crossing) {
-          piece.points.push_back(place(fr, p.uvh));
-          continue;
-        }
-        const int id = crossing_node(f, *p.crossing);
-        if (cast_on && p.crossing->side == Crossing::Side::Bottom && m_node_border[id]) dropped = true;
-        piece.points.push_back(m_node_pos[id]);
-        (i == 0 ? piece.start : piece.end) = id;
-      }
-      if (!dropped) add_piece(std::move(piece));
-    }
+    add_model(
+        model, f, type_id(face.type), [&](const Eigen::Vector3d& uvh) { return place(fr, uvh); },
+        [&](const Crossing& c) { return crossing_node(f, c); },
+        [&](const Crossing& c, int id) { return cast_on && c.side == Crossing::Side::Bottom && m_node_border[id]; });
     // Yuksel §4.3: bind-off pieces close the loops of the last row over its top border edges.
     for (int j = 0; j < face.top(); ++j) {
       const int a = face.vertex(face.size() - 1 - j), b = face.vertex(face.size() - 2 - j);
@@ -207,23 +217,9 @@ private:
     const Eigen::Vector3d &pa = m_mesh.vertices[a], &pb = m_mesh.vertices[b];
     fr.position = {pa, pb, pb + up, pa + up};
     fr.normal = {m_normal[a], m_normal[b], m_normal[b], m_normal[a]};
-    const int type = type_id("bind-off");
-    for (const auto& mp : model.pieces) {
-      Piece piece;
-      piece.face = -1;
-      piece.type = type;
-      for (size_t i = 0; i < mp.points.size(); ++i) {
-        const auto& p = mp.points[i];
-        if (!p.crossing) {
-          piece.points.push_back(place(fr, p.uvh));
-          continue;
-        }
-        const int id = node(a, b, kCourseSlots[p.crossing->slot], false, is_cable(a, b) ? 1 : 0);
-        piece.points.push_back(m_node_pos[id]);
-        (i == 0 ? piece.start : piece.end) = id;
-      }
-      add_piece(std::move(piece));
-    }
+    add_model(
+        model, -1, type_id("bind-off"), [&](const Eigen::Vector3d& uvh) { return place(fr, uvh); },
+        [&](const Crossing& c) { return node(a, b, kCourseSlots[c.slot], false, is_cable(a, b) ? 1 : 0); }, keep);
     ++report.bind_off;
   }
 
@@ -286,24 +282,13 @@ private:
       const Eigen::Vector3d nrm = ((1 - t) * m_normal[va] + t * m_normal[vb]).normalized();
       return Eigen::Vector3d(p + front * h * m_radius * nrm);
     };
-    for (const auto& mp : model->pieces) {
-      Piece piece;
-      piece.face = -1;
-      piece.type = type;
-      for (size_t i = 0; i < mp.points.size(); ++i) {
-        const auto& p = mp.points[i];
-        if (!p.crossing) {
-          piece.points.push_back(on_line(p.uvh.x(), p.uvh.z()));
-          continue;
-        }
-        const auto [va, vb] = run.edges[p.crossing->edge];
-        const bool below = p.crossing->side == Crossing::Side::Bottom;
-        const int id = node(va, vb, kCourseSlots[p.crossing->slot], false, below ? 1 : 2);
-        piece.points.push_back(m_node_pos[id]);
-        (i == 0 ? piece.start : piece.end) = id;
-      }
-      add_piece(std::move(piece));
-    }
+    add_model(
+        *model, -1, type, [&](const Eigen::Vector3d& uvh) { return on_line(uvh.x(), uvh.z()); },
+        [&](const Crossing& c) {
+          const auto [va, vb] = run.edges[c.edge];
+          return node(va, vb, kCourseSlots[c.slot], false, c.side == Crossing::Side::Bottom ? 1 : 2);
+        },
+        keep);
     ++report.cables;
   }
 

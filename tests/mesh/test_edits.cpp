@@ -112,7 +112,7 @@ TEST(Edits, ShiftAWaleEdgeAndBack) {
 
 TEST(Edits, CableMarksNeedACourseRunBetweenTwoRows) {
   const auto s = stitched(models::swatch());
-  const auto path = skein::testing::top_path(s, 4, 8, 11);  // three neighbouring stitches of row 4
+  const auto path = mesh::top_edge_path(s, 4, 8, 11);  // three neighbouring stitches of row 4
   const auto marked = mesh::mark_cable(s, path, 1, 1);
   EXPECT_EQ(marked.cables.size(), 3u);
   EXPECT_TRUE(mesh::validate(marked).valid());

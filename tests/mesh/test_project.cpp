@@ -21,7 +21,7 @@ mesh::Project full_project() {
   p.values->marked[p.input->face_edge(3, p.labels->faces[3].left)] = 1;
   auto s = mesh::tessellate(*p.input, *p.labels, *p.values);
   s = mesh::fill(s, skein::testing::all_faces(s), mesh::parse_fill("rib2x2"));
-  p.stitch = mesh::mark_cable(s, skein::testing::top_path(s, 3, 2, 4), 1, -1);
+  p.stitch = mesh::mark_cable(s, mesh::top_edge_path(s, 3, 2, 4), 1, -1);
   return p;
 }
 

@@ -135,7 +135,7 @@ TEST(YarnEmission, OppositeWaleDirectionsMakeClosedLoops) {
 
 TEST(YarnEmission, CableFaceCrossesLoops) {
   auto s = stitched(models::swatch());
-  s = mesh::mark_cable(s, skein::testing::top_path(s, 5, 3, 7), 2, 1);  // 2 over 2
+  s = mesh::mark_cable(s, mesh::top_edge_path(s, 5, 3, 7), 2, 1);  // 2 over 2
   mesh::EmitReport report;
   const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}, &report);
   EXPECT_EQ(report.cables, 1);
@@ -144,7 +144,7 @@ TEST(YarnEmission, CableFaceCrossesLoops) {
   expect_continuous(s, y, "cable");
   // A cable of 4 over 1 has no model.
   auto wide = stitched(models::swatch());
-  wide = mesh::mark_cable(wide, skein::testing::top_path(wide, 5, 2, 7), 4, 1);
+  wide = mesh::mark_cable(wide, mesh::top_edge_path(wide, 5, 2, 7), 4, 1);
   EXPECT_NE(error_of([&] { mesh::emit_yarn(wide, mesh::StitchLibrary::bundled(), {}); }).find("4 over 1 stitches has no model"), std::string::npos);
 }
 
