@@ -3,6 +3,8 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/Geometry>
+
 #include "common/error.hpp"
 #include "garments.hpp"
 #include "relax/yarn_io.hpp"
@@ -167,4 +169,92 @@ TEST(YarnEmission, RefusesWhatItCannotEmit) {
   EXPECT_THROW(mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {0.0}), Error);
   s.faces[0].type = "kp";  // does not fit a 1-1 face: invalid mesh
   EXPECT_NE(error_of([&] { mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}); }).find("not valid"), std::string::npos);
+}
+
+namespace {
+/// Linking number of two closed polylines, from the signed crossings of a generic projection (half their sum).
+int linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  // Project along a direction slightly off the z axis so that no two segments are parallel to it.
+  const Eigen::Vector3d n = Eigen::Vector3d(0.0123, 0.0071, 1).normalized();
+  const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  int sum = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j) {
+      const Eigen::Vector3d &p0 = a[i], &p1 = a[(i + 1) % a.size()], &q0 = b[j], &q1 = b[(j + 1) % b.size()];
+      const Eigen::Vector2d P0(p0.dot(e1), p0.dot(e2)), dP(Eigen::Vector2d((p1 - p0).dot(e1), (p1 - p0).dot(e2)));
+      const Eigen::Vector2d Q0(q0.dot(e1), q0.dot(e2)), dQ(Eigen::Vector2d((q1 - q0).dot(e1), (q1 - q0).dot(e2)));
+      const double den = dP.x() * dQ.y() - dP.y() * dQ.x();
+      if (std::abs(den) < 1e-15) continue;
+      const Eigen::Vector2d w = Q0 - P0;
+      const double s = (w.x() * dQ.y() - w.y() * dQ.x()) / den, t = (w.x() * dP.y() - w.y() * dP.x()) / den;
+      if (s < 0 || s >= 1 || t < 0 || t >= 1) continue;
+      const double za = (p0 + s * (p1 - p0)).dot(n), zb = (q0 + t * (q1 - q0)).dot(n);
+      sum += (za > zb ? 1 : -1) * (den > 0 ? 1 : -1);
+
+    }
+  return sum / 2;
+}
+
+int index_at(const mesh::YarnCurves& y, const Eigen::Vector3d& p) {
+  for (size_t i = 0; i < y.points.size(); ++i)
+    if ((y.points[i] - p).norm() < 1e-9) return static_cast<int>(i);
+  return -1;
+}
+
+/// Points [from, to] of one open curve, in order.
+std::vector<Eigen::Vector3d> stretch(const mesh::YarnCurves& y, int from, int to) {
+  if (from > to) std::swap(from, to);
+  return {y.points.begin() + from, y.points.begin() + to + 1};
+}
+
+/// Yuksel's stitch as a clasp: the head of the loop below (closed along its bottom edge) and the yarn that dips
+/// between the stitch and its left neighbour (closed along the top course line). Hooked: ±1; not hooked: 0.
+int clasp_linking(const mesh::StitchMesh& s, const mesh::YarnCurves& y, int row, int col) {
+  const auto rows = mesh::faces_by_row(s);
+  const auto& g = s.faces[rows[row][col]];
+  const auto& left = s.faces[rows[row][col - 1]];
+  const auto at = [&](int a, int b, double t) { return index_at(y, s.vertices[a] + t * (s.vertices[b] - s.vertices[a])); };
+  // g: vertices 0 (bottom-left), 1 (bottom-right), 2 (top-right), 3 (top-left).
+  const int head_a = at(g.vertex(0), g.vertex(1), mesh::kCourseSlots[0]), head_b = at(g.vertex(0), g.vertex(1), mesh::kCourseSlots[1]);
+  const int wale = at(g.vertex(0), g.vertex(3), mesh::kWaleCrossing);
+  const std::vector<int> own_top{at(g.vertex(3), g.vertex(2), mesh::kCourseSlots[0]), at(g.vertex(3), g.vertex(2), mesh::kCourseSlots[1])};
+  const std::vector<int> left_top{at(left.vertex(3), left.vertex(2), mesh::kCourseSlots[0]), at(left.vertex(3), left.vertex(2), mesh::kCourseSlots[1])};
+  EXPECT_TRUE(head_a >= 0 && head_b >= 0 && wale >= 0);
+  // The dip: from where the neighbour's falling leg leaves the top edge, through the wale crossing, to where
+  // g's rising leg first reaches it. Walk both ways from the wale crossing to the first top crossing.
+  const auto first_top = [&](int step) {
+    for (int i = wale + step; i >= 0 && i < static_cast<int>(y.points.size()); i += step) {
+      if (i == own_top[0] || i == own_top[1]) return std::pair{i, true};
+      if (i == left_top[0] || i == left_top[1]) return std::pair{i, false};
+    }
+    return std::pair{-1, false};
+  };
+  const auto [up, up_is_own] = first_top(1);
+  const auto [down, down_is_own] = first_top(-1);
+  EXPECT_NE(up_is_own, down_is_own);
+  return linking_number(stretch(y, head_a, head_b), stretch(y, down, up));
+}
+}  // namespace
+
+TEST(YarnEmission, StitchesHookTheLoopsBelowAsIntended) {
+  // Knit and purl hook the loop below with opposite signs, twisted and crossed stitches hook it too, and a
+  // yarn-over does not hook it at all (Yuksel §4.2). Twisted and crossed stitches give the opposite sign to
+  // their plain stitch in this certificate (their rising leg lands on the other slot); docs/yarn.md.
+  const auto base = stitched(models::swatch());
+  std::map<std::string, int> lk;
+  for (const char* type : {"k", "p", "y", "k+1", "k-1", "p+1", "p-1", "y+1", "y-1", "x"}) {
+    auto s = base;
+    for (auto& f : s.faces) f.type = type;
+    const auto y = mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {});
+    ASSERT_EQ(y.curves(), 1);
+    lk[type] = clasp_linking(s, y, 5, 4);
+    EXPECT_EQ(clasp_linking(s, y, 8, 7), lk[type]) << type << ": the same in every stitch";
+  }
+  EXPECT_EQ(std::abs(lk["k"]), 1);
+  EXPECT_EQ(lk["p"], -lk["k"]);
+  EXPECT_EQ(lk["y"], 0);
+  for (const char* t : {"k+1", "k-1", "x", "p+1", "p-1"}) EXPECT_EQ(std::abs(lk[t]), 1) << t;
+  EXPECT_EQ(lk["k+1"], lk["k-1"]);
+  EXPECT_EQ(lk["p+1"], -lk["k+1"]);
+  for (const char* t : {"y+1", "y-1"}) EXPECT_EQ(lk[t], 0) << t;
 }
