@@ -442,7 +442,7 @@ int main(int argc, char** argv) {
       Stopwatch t;
       mesh::EmitReport report;
       const auto yarn = yarn_of(yarn_in, yarn_radius, stitches_dir, &report);
-      spdlog::info("emitted {} yarns ({} closed), {} control points, radius {} mm ({:.3f} s)", yarn.curves(),
+      spdlog::info("emitted {} yarns ({} closed), {} control points, radius {:.4g} mm ({:.3f} s)", yarn.curves(),
                    std::count(yarn.closed.begin(), yarn.closed.end(), 1), yarn.points.size(), yarn.radius, t.seconds());
       spdlog::info("borders: {} cast-on stitches, {} bind-off pieces, {} turns, {} tied ends; {} cable faces", report.cast_on, report.bind_off,
                    report.turns, report.tied_ends, report.cables);
