@@ -7,3 +7,11 @@ find_package(nlohmann_json REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(TBB REQUIRED)
 find_package(PNG REQUIRED)
+
+# OpenSubdiv 3.5 (libosd-dev): its CMake config points at a missing libosdCPU.a, so find it by hand.
+find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)
+find_library(OPENSUBDIV_CPU_LIBRARY osdCPU REQUIRED)
+add_library(skein_opensubdiv INTERFACE IMPORTED)
+target_include_directories(skein_opensubdiv INTERFACE ${OPENSUBDIV_INCLUDE_DIR})
+target_link_libraries(skein_opensubdiv INTERFACE ${OPENSUBDIV_CPU_LIBRARY})
+add_library(OpenSubdiv::osdCPU ALIAS skein_opensubdiv)

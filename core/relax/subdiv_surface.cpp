@@ -1,0 +1,298 @@
+#include "relax/subdiv_surface.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <Eigen/Geometry>
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "common/error.hpp"
+
+namespace skein::relax {
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+namespace {
+/// The point type OpenSubdiv's refiners and stencils interpolate.
+struct Point {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  void Clear(void* = nullptr) { x.setZero(); }
+  void AddWithWeight(const Point& src, double w) { x += w * src.x; }
+};
+}  // namespace
+
+struct SubdivSurface::Impl {
+  std::unique_ptr<Far::TopologyRefiner> refiner;
+  std::unique_ptr<Far::PatchTable> patches;
+  std::unique_ptr<Far::PatchMap> patch_map;
+  std::vector<Point> points;  ///< control, refined and local points
+  std::vector<int> ptex_first, ptex_count, ptex_face;
+};
+
+SubdivSurface::SubdivSurface(const std::vector<Eigen::Vector3d>& points, const std::vector<std::vector<int>>& faces, int isolation)
+    : m_impl(std::make_unique<Impl>()) {
+  if (faces.empty()) throw Error("", "subdivision surface", "the control mesh has no faces");
+  std::vector<int> sizes, indices;
+  for (const auto& f : faces) {
+    if (f.size() < 3) throw Error("", "subdivision surface", "a control face has fewer than 3 corners");
+    sizes.push_back(static_cast<int>(f.size()));
+    indices.insert(indices.end(), f.begin(), f.end());
+  }
+  Far::TopologyDescriptor desc;
+  desc.numVertices = static_cast<int>(points.size());
+  desc.numFaces = static_cast<int>(faces.size());
+  desc.numVertsPerFace = sizes.data();
+  desc.vertIndicesPerFace = indices.data();
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);  // the border is a limit curve through the corners
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  m_impl->refiner.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
+  if (!m_impl->refiner) throw Error("", "subdivision surface", "OpenSubdiv refused the control mesh's topology");
+
+  Far::PatchTableFactory::Options options(isolation);
+  options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+  options.SetPatchPrecision<double>();
+  m_impl->refiner->RefineAdaptive(options.GetRefineAdaptiveOptions());
+  m_impl->patches.reset(Far::PatchTableFactory::Create(*m_impl->refiner, options));
+
+  // Control points, then every refined level, then the end caps' local points.
+  const int refined = m_impl->refiner->GetNumVerticesTotal();
+  const int local = m_impl->patches->GetNumLocalPoints();
+  auto& pts = m_impl->points;
+  pts.resize(refined + local);
+  for (size_t i = 0; i < points.size(); ++i) pts[i].x = points[i];
+  Far::PrimvarRefinerReal<double> primvar(*m_impl->refiner);
+  Point* src = pts.data();
+  for (int level = 1; level <= m_impl->refiner->GetMaxLevel(); ++level) {
+    Point* dst = src + m_impl->refiner->GetLevel(level - 1).GetNumVertices();
+    primvar.Interpolate(level, src, dst);
+    src = dst;
+  }
+  if (local > 0) m_impl->patches->GetLocalPointStencilTable<double>()->UpdateValues(pts.data(), pts.data() + refined);
+  m_impl->patch_map = std::make_unique<Far::PatchMap>(*m_impl->patches);
+
+  const Far::PtexIndices ptex(*m_impl->refiner);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    m_impl->ptex_first.push_back(ptex.GetFaceId(static_cast<int>(f)));
+    m_impl->ptex_count.push_back(faces[f].size() == 4 ? 1 : static_cast<int>(faces[f].size()));
+    for (int k = 0; k < m_impl->ptex_count.back(); ++k) m_impl->ptex_face.push_back(static_cast<int>(f));
+  }
+}
+
+SubdivSurface::~SubdivSurface() = default;
+SubdivSurface::SubdivSurface(SubdivSurface&&) noexcept = default;
+SubdivSurface& SubdivSurface::operator=(SubdivSurface&&) noexcept = default;
+
+int SubdivSurface::num_ptex_faces() const { return static_cast<int>(m_impl->ptex_face.size()); }
+int SubdivSurface::ptex_of(int face) const { return m_impl->ptex_first.at(face); }
+int SubdivSurface::ptex_count(int face) const { return m_impl->ptex_count.at(face); }
+int SubdivSurface::face_of_ptex(int ptex) const { return m_impl->ptex_face.at(ptex); }
+
+SurfaceSample SubdivSurface::evaluate(const SurfaceCoord& at) const {
+  if (at.ptex < 0 || at.ptex >= num_ptex_faces()) throw Error("", "ptex face " + std::to_string(at.ptex), "does not exist");
+  const double u = std::clamp(at.u, 0.0, 1.0), v = std::clamp(at.v, 0.0, 1.0);
+  const Far::PatchTable::PatchHandle* handle = m_impl->patch_map->FindPatch(at.ptex, u, v);
+  if (!handle) throw Error("", "ptex face " + std::to_string(at.ptex), "has no patch at (" + std::to_string(u) + ", " + std::to_string(v) + ")");
+  double wp[20], wu[20], wv[20];
+  m_impl->patches->EvaluateBasis(*handle, u, v, wp, wu, wv);
+  const Far::ConstIndexArray cvs = m_impl->patches->GetPatchVertices(*handle);
+  SurfaceSample s;
+  for (int i = 0; i < cvs.size(); ++i) {
+    const Eigen::Vector3d& x = m_impl->points[cvs[i]].x;
+    s.position += wp[i] * x;
+    s.du += wu[i] * x;
+    s.dv += wv[i] * x;
+  }
+  return s;
+}
+
+SurfaceTriangles triangulate(const SubdivSurface& surface, int n) {
+  SurfaceTriangles out;
+  // Weld samples that several ptex faces share (their edges), by position on a lattice far finer than the
+  // samples' spacing and far coarser than the difference between two patches' evaluations of one point.
+  Eigen::AlignedBox3d box;
+  for (int p = 0; p < surface.num_ptex_faces(); ++p)
+    for (const auto& c : {SurfaceCoord{p, 0, 0}, SurfaceCoord{p, 1, 1}, SurfaceCoord{p, 0.5, 0.5}}) box.extend(surface.evaluate(c).position);
+  const double lattice = 1e-6 * std::max(1.0, box.diagonal().norm());
+  std::map<std::array<long long, 3>, int> welded;
+  const auto id_of = [&](const SurfaceCoord& c) {
+    const Eigen::Vector3d x = surface.evaluate(c).position;
+    const std::array<long long, 3> key{std::llround(x.x() / lattice), std::llround(x.y() / lattice), std::llround(x.z() / lattice)};
+    const auto [it, inserted] = welded.try_emplace(key, static_cast<int>(out.positions.size()));
+    if (inserted) {
+      out.positions.push_back(x);
+      out.coords.push_back(c);
+    }
+    return it->second;
+  };
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_uses;  // edge → (uses, a triangle)
+  for (int p = 0; p < surface.num_ptex_faces(); ++p) {
+    std::vector<int> ids((n + 1) * (n + 1));
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) ids[j * (n + 1) + i] = id_of({p, double(i) / n, double(j) / n});
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = ids[j * (n + 1) + i], b = ids[j * (n + 1) + i + 1], c = ids[(j + 1) * (n + 1) + i + 1], d = ids[(j + 1) * (n + 1) + i];
+        for (const auto& t : {Eigen::Vector3i(a, b, c), Eigen::Vector3i(a, c, d)}) {
+          out.triangles.push_back(t);
+          out.triangle_ptex.push_back(p);
+          for (int k = 0; k < 3; ++k) {
+            auto& use = edge_uses[std::minmax(t[k], t[(k + 1) % 3])];
+            ++use.first;
+            use.second = static_cast<int>(out.triangles.size()) - 1;
+          }
+        }
+      }
+  }
+  for (const auto& [e, use] : edge_uses)
+    if (use.first == 1) out.border.push_back(e), out.border_triangle.push_back(use.second);
+  return out;
+}
+
+namespace {
+/// Closest point of triangle abc to p, as barycentric weights (Ericson, Real-Time Collision Detection §5.1.5).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+}  // namespace
+
+SurfaceProjector::SurfaceProjector(const SubdivSurface& surface, SurfaceTriangles triangles) : m_surface(surface), m_tris(std::move(triangles)) {
+  double longest = 0;
+  for (const auto& t : m_tris.triangles)
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, (m_tris.positions[t[k]] - m_tris.positions[t[(k + 1) % 3]]).norm());
+  m_cell = std::max(longest, 1e-9);
+  for (size_t t = 0; t < m_tris.triangles.size(); ++t) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) centre += m_tris.positions[m_tris.triangles[t][k]] / 3;
+    m_grid.emplace_back(key(centre), static_cast<int>(t));
+  }
+  std::sort(m_grid.begin(), m_grid.end());
+}
+
+std::uint64_t SurfaceProjector::key(const Eigen::Vector3d& p) const {
+  const auto q = (p / m_cell).array().floor().cast<std::int64_t>();
+  return (static_cast<std::uint64_t>(q.x() & 0x1fffff) << 42) | (static_cast<std::uint64_t>(q.y() & 0x1fffff) << 21) | static_cast<std::uint64_t>(q.z() & 0x1fffff);
+}
+
+SurfaceCoord SurfaceProjector::coord_in(int t, const Eigen::Vector3d& w) const {
+  // Barycentric weights carry over to the ptex (u, v) of the triangle's corners: one ptex face per triangle.
+  SurfaceCoord c{m_tris.triangle_ptex[t], 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    const SurfaceCoord& corner = m_tris.coords[m_tris.triangles[t][k]];
+    // A welded corner may have been evaluated in a neighbouring ptex face: its (u, v) there are not ours.
+    if (corner.ptex != c.ptex) return {-1, 0, 0};
+    c.u += w[k] * corner.u;
+    c.v += w[k] * corner.v;
+  }
+  return c;
+}
+
+Attachment SurfaceProjector::attach(const Eigen::Vector3d& point, bool on_border) const {
+  double best = std::numeric_limits<double>::infinity();
+  int best_t = -1;
+  Eigen::Vector3d best_w;
+  const auto consider = [&](int t) {
+    const auto& tri = m_tris.triangles[t];
+    const Eigen::Vector3d w = closest_on_triangle(point, m_tris.positions[tri[0]], m_tris.positions[tri[1]], m_tris.positions[tri[2]]);
+    const double d = (w[0] * m_tris.positions[tri[0]] + w[1] * m_tris.positions[tri[1]] + w[2] * m_tris.positions[tri[2]] - point).norm();
+    if (d < best) best = d, best_t = t, best_w = w;
+  };
+  if (on_border) {
+    // The closest border edge, then the triangle that owns it.
+    double best_edge = std::numeric_limits<double>::infinity();
+    size_t edge = 0;
+    double at = 0;
+    for (size_t e = 0; e < m_tris.border.size(); ++e) {
+      const Eigen::Vector3d &pa = m_tris.positions[m_tris.border[e].first], &pb = m_tris.positions[m_tris.border[e].second];
+      const double t = std::clamp((point - pa).dot(pb - pa) / std::max((pb - pa).squaredNorm(), 1e-300), 0.0, 1.0);
+      const double d = (pa + t * (pb - pa) - point).norm();
+      if (d < best_edge) best_edge = d, edge = e, at = t;
+    }
+    if (m_tris.border.empty()) throw Error("", "border attachment", "the surface has no border");
+    best_t = m_tris.border_triangle[edge];
+    best = best_edge;
+    best_w.setZero();
+    const auto& tri = m_tris.triangles[best_t];
+    for (int k = 0; k < 3; ++k) {
+      if (tri[k] == m_tris.border[edge].first) best_w[k] = 1 - at;
+      if (tri[k] == m_tris.border[edge].second) best_w[k] = at;
+    }
+  } else {
+    // Grow the searched block of cells until the best distance found is certain.
+    const auto q = (point / m_cell).array().floor().cast<std::int64_t>();
+    for (int radius = 1; radius < 64 && (best_t < 0 || best > (radius - 1) * m_cell); ++radius) {
+      best = std::numeric_limits<double>::infinity();
+      best_t = -1;
+      for (std::int64_t dx = -radius; dx <= radius; ++dx)
+        for (std::int64_t dy = -radius; dy <= radius; ++dy)
+          for (std::int64_t dz = -radius; dz <= radius; ++dz) {
+            const std::uint64_t k = key(((q + Eigen::Array<std::int64_t, 3, 1>(dx, dy, dz)).cast<double>() + 0.5) * m_cell);
+            auto it = std::lower_bound(m_grid.begin(), m_grid.end(), std::pair<std::uint64_t, int>(k, -1));
+            for (; it != m_grid.end() && it->first == k; ++it) consider(it->second);
+          }
+    }
+    if (best_t < 0)
+      for (size_t t = 0; t < m_tris.triangles.size(); ++t) consider(static_cast<int>(t));  // far from the surface
+  }
+  Attachment a;
+  a.coord = coord_in(best_t, best_w);
+  if (a.coord.ptex < 0) {  // fall back to the nearest corner of the triangle, which lies in some ptex face
+    int k = 0;
+    best_w.maxCoeff(&k);
+    a.coord = m_tris.coords[m_tris.triangles[best_t][k]];
+  }
+  a.position = m_surface.evaluate(a.coord).position;
+  a.distance = (a.position - point).norm();
+  return a;
+}
+
+StitchAttachment attach_stitch_mesh(const mesh::StitchMesh& stitch, const SurfaceProjector& projector) {
+  StitchAttachment out;
+  out.on_border.assign(stitch.vertices.size(), 0);
+  for (const auto& [key, uses] : mesh::edge_table(stitch))
+    if (uses.count == 1) out.on_border[key >> 32] = out.on_border[key & 0xffffffffu] = 1;
+  for (size_t v = 0; v < stitch.vertices.size(); ++v) {
+    const Attachment a = projector.attach(stitch.vertices[v], out.on_border[v]);
+    out.coords.push_back(a.coord);
+    out.positions.push_back(a.position);
+    out.max_distance = std::max(out.max_distance, a.distance);
+  }
+  return out;
+}
+
+}  // namespace skein::relax
