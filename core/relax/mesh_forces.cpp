@@ -1,0 +1,58 @@
+#include "relax/mesh_forces.hpp"
+
+#include <cmath>
+
+namespace skein::relax::forces {
+
+Stretch stretch(const Vec3& xi, const Vec3& xj, double rest, double k) {
+  const Vec3 w = xi - xj;
+  const double d = std::max(w.norm(), 1e-12);
+  const Vec3 u = w / d;
+  Stretch s;
+  s.energy = k * (d - rest - rest * std::log(d / rest));
+  s.force_i = k * (rest / d - 1) * u;
+  // d/dx_i of k (ℓ/d − 1) u: k/d [(ℓ/d − 1)(I − u uᵀ) − (ℓ/d) u uᵀ]
+  const Mat3 uu = u * u.transpose();
+  s.jacobian = k / d * ((rest / d - 1) * (Mat3::Identity() - uu) - (rest / d) * uu);
+  return s;
+}
+
+Shear shear(const Vec3& xi, const Vec3& xj, const Vec3& xk, double k) {
+  const Vec3 a = xi - xj, b = xk - xj;
+  const double s = a.dot(b);
+  // ds/dx for (i, j, k) and the constant second derivatives of s.
+  const Vec3 g[3] = {b, -a - b, a};
+  const double h[3][3] = {{0, -1, 1}, {-1, 2, -1}, {1, -1, 0}};
+  Shear out;
+  out.energy = 0.25 * k * s * s;
+  for (int p = 0; p < 3; ++p) out.force[p] = -0.5 * k * s * g[p];
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) out.jacobian[p][q] = -0.5 * k * (g[p] * g[q].transpose() + s * h[p][q] * Mat3::Identity());
+  return out;
+}
+
+Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale, double k) {
+  const Vec3 w = xi - xk;
+  const double d = std::max(w.norm(), 1e-12);
+  const Vec3 u = w / d;
+  const Vec3 eij = xi - xj, ekj = xk - xj;
+  const double span = eij.norm() + ekj.norm();
+  const bool follows = span > rest_wale;  // r = |x_i − x_j| + |x_k − x_j|, else the constant r_wale
+  const double r = follows ? span : rest_wale;
+  Strut out;
+  out.energy = k * (d - r) * (d - r) / (2 * r);
+  out.force_i = -k * (d / r - 1) * u;  // = −k w (1/r − 1/d)
+  // f_i = −k w (1/r − 1/d): d f_i/d x_b = −k [dw/dx_b (1/r − 1/d) + w (−dr/dx_b / r² + dd/dx_b / d²)]
+  const Vec3 ui = eij.norm() > 0 ? Vec3(eij.normalized()) : Vec3::Zero(), uk = ekj.norm() > 0 ? Vec3(ekj.normalized()) : Vec3::Zero();
+  const Vec3 dr[3] = {follows ? ui : Vec3::Zero(), follows ? Vec3(-ui - uk) : Vec3::Zero(), follows ? uk : Vec3::Zero()};
+  const Vec3 dd[3] = {u, Vec3::Zero(), -u};
+  const double dw[3] = {1, 0, -1};
+  for (int b = 0; b < 3; ++b) {
+    const Mat3 dfi = -k * (dw[b] * (1 / r - 1 / d) * Mat3::Identity() + w * (-dr[b] / (r * r) + dd[b] / (d * d)).transpose());
+    out.jacobian[0][b] = dfi;
+    out.jacobian[1][b] = -dfi;  // f_k = −f_i
+  }
+  return out;
+}
+
+}  // namespace skein::relax::forces
