@@ -15,6 +15,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
+#include "relax/mesh_relax.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
@@ -265,6 +266,25 @@ int main(int argc, char** argv) {
   yarn_cmd->add_option("--color", yarn_color, "tube colour: type or yarn")->check(CLI::IsMember({"type", "yarn"}));
   yarn_cmd->add_option("--stitches", stitches_dir, "stitch library folder (default: the bundled stitches/)");
 
+  // skein relax-mesh
+  auto* relax_cmd = app.add_subcommand("relax-mesh", "relax a stitch mesh on the limit surface of its input mesh (Yuksel 2012 §6.1)");
+  std::string relax_in, relax_out, relax_png, relax_png_before, relax_ply, relax_report;
+  relax::MeshRelaxOptions relax_options;
+  relax_cmd->add_option("PROJECT", relax_in, ".skein project with an input mesh and a stitch mesh")->required();
+  relax_cmd->add_option("-o,--output", relax_out, "project to write, with the relaxed stitch mesh")->required();
+  relax_cmd->add_option("--png", relax_png, "stretch picture after relaxation (area strain: blue compressed, red stretched)");
+  relax_cmd->add_option("--png-before", relax_png_before, "the same picture before relaxation");
+  relax_cmd->add_option("--ply", relax_ply, "relaxed stitch mesh as PLY with stretch colours and strains per face");
+  relax_cmd->add_option("--report", relax_report, "JSON report: rest lengths, steps, energy and displacement history");
+  relax_cmd->add_option("--alpha", relax_options.alpha, "rest-size scale α of N r_wale r_course = α A")->capture_default_str();
+  relax_cmd->add_option("--aspect", relax_options.aspect, "stitch aspect a = r_wale / r_course")->capture_default_str();
+  relax_cmd->add_option("--steps", relax_options.max_steps, "step cap")->capture_default_str();
+  relax_cmd->add_option("--tolerance", relax_options.tolerance, "stop when no vertex moves more than this × r_course in a step")->capture_default_str();
+  relax_cmd->add_option("--time-step", relax_options.time_step, "backward Euler step h [mm] (0: 10 r_course)")->capture_default_str();
+  relax_cmd->add_option("--k-stretch", relax_options.k_stretch, "stretch stiffness κ_stretch")->capture_default_str();
+  relax_cmd->add_option("--k-shear", relax_options.k_shear, "shear stiffness κ_shear")->capture_default_str();
+  relax_cmd->add_option("--k-wale", relax_options.k_wale, "wale strut stiffness κ_wale")->capture_default_str();
+
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
   std::string stats_in;
@@ -434,6 +454,48 @@ int main(int argc, char** argv) {
       const auto project = mesh::read_project(render_in);
       if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
       render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row, render_views);
+      return 0;
+    }
+    if (*relax_cmd) {
+      for (const auto& p : {relax_out, relax_png, relax_png_before, relax_ply, relax_report})
+        if (!p.empty()) check_writable(p);
+      auto project = mesh::read_project(relax_in);
+      if (!project.input || !project.stitch) throw Error(relax_in, "", "needs an input mesh and a stitch mesh (run 'skein stitch' first)");
+      Stopwatch t;
+      relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, relax_options);
+      spdlog::info("attached {} stitch vertices to the limit surface; rest r_course = {:.3f} mm, r_wale = {:.3f} mm ({:.2f} s)",
+                   project.stitch->vertices.size(), relaxer.r_course(), relaxer.r_wale(), t.seconds());
+      const auto stretch_png = [&](const mesh::StitchMesh& sm, const std::string& path) {
+        const auto strain = relax::face_stretch(sm, relaxer.r_course(), relaxer.r_wale());
+        std::vector<Eigen::Vector3f> colors;
+        for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
+        render::write_png(render::draw(render::stitch_polygons(sm, colors), render::View{}), path);
+        spdlog::info("wrote {}", path);
+      };
+      if (!relax_png_before.empty()) stretch_png(relaxer.relaxed(), relax_png_before);
+      t = {};
+      const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+        spdlog::info("step {:4d}  energy {:.6g}  largest move {:.4f} mm  cg {:3d}  h {:.3g}", s.step, s.energy, s.max_displacement, s.cg_iterations, s.time_step);
+      });
+      spdlog::info("{} after {} steps ({:.2f} s)", report.converged ? "converged" : "stopped at the step cap", report.steps.size(), t.seconds());
+      project.stitch = relaxer.relaxed();
+      mesh::write_project(project, relax_out);
+      spdlog::info("wrote {}", relax_out);
+      if (!relax_png.empty()) stretch_png(*project.stitch, relax_png);
+      if (!relax_ply.empty()) {
+        const auto strain = relax::face_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale());
+        std::vector<Eigen::Vector3f> colors;
+        for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
+        render::write_ply(*project.stitch, colors, {{"edge_strain", strain.edge_strain}, {"area_strain", strain.area_strain}}, relax_ply);
+        spdlog::info("wrote {}", relax_ply);
+      }
+      if (!relax_report.empty()) {
+        json steps = json::array();
+        for (const auto& s : report.steps)
+          steps.push_back({{"step", s.step}, {"energy", s.energy}, {"max_displacement", s.max_displacement}, {"cg_iterations", s.cg_iterations}, {"time_step", s.time_step}});
+        write_json({{"r_course", report.r_course}, {"r_wale", report.r_wale}, {"initial_energy", report.initial_energy}, {"converged", report.converged}, {"steps", steps}},
+                   relax_report);
+      }
       return 0;
     }
     if (*yarn_cmd) {

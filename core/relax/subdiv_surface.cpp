@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTable.h>
@@ -142,9 +143,14 @@ SurfaceTriangles triangulate(const SubdivSurface& surface, int n) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const int a = ids[j * (n + 1) + i], b = ids[j * (n + 1) + i + 1], c = ids[(j + 1) * (n + 1) + i + 1], d = ids[(j + 1) * (n + 1) + i];
+        const Eigen::Vector2d ua(double(i) / n, double(j) / n), ub(double(i + 1) / n, double(j) / n), uc(double(i + 1) / n, double(j + 1) / n),
+            ud(double(i) / n, double(j + 1) / n);
+        const std::array<Eigen::Vector2d, 3> uv_of[2] = {{ua, ub, uc}, {ua, uc, ud}};
+        int half = 0;
         for (const auto& t : {Eigen::Vector3i(a, b, c), Eigen::Vector3i(a, c, d)}) {
           out.triangles.push_back(t);
           out.triangle_ptex.push_back(p);
+          out.triangle_uv.push_back(uv_of[half++]);
           for (int k = 0; k < 3; ++k) {
             auto& use = edge_uses[std::minmax(t[k], t[(k + 1) % 3])];
             ++use.first;
@@ -202,6 +208,14 @@ SurfaceProjector::SurfaceProjector(const SubdivSurface& surface, SurfaceTriangle
     m_grid.emplace_back(key(centre), static_cast<int>(t));
   }
   std::sort(m_grid.begin(), m_grid.end());
+  m_vertex_triangles.resize(m_tris.positions.size());
+  for (size_t t = 0; t < m_tris.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) m_vertex_triangles[m_tris.triangles[t][k]].push_back(static_cast<int>(t));
+  m_vertex_border.resize(m_tris.positions.size());
+  for (size_t e = 0; e < m_tris.border.size(); ++e) {
+    m_vertex_border[m_tris.border[e].first].push_back(static_cast<int>(e));
+    m_vertex_border[m_tris.border[e].second].push_back(static_cast<int>(e));
+  }
 }
 
 std::uint64_t SurfaceProjector::key(const Eigen::Vector3d& p) const {
@@ -210,14 +224,11 @@ std::uint64_t SurfaceProjector::key(const Eigen::Vector3d& p) const {
 }
 
 SurfaceCoord SurfaceProjector::coord_in(int t, const Eigen::Vector3d& w) const {
-  // Barycentric weights carry over to the ptex (u, v) of the triangle's corners: one ptex face per triangle.
+  // Barycentric weights carry over to the (u, v) of the triangle's corners in its own ptex face (Yuksel §6.1).
   SurfaceCoord c{m_tris.triangle_ptex[t], 0, 0};
   for (int k = 0; k < 3; ++k) {
-    const SurfaceCoord& corner = m_tris.coords[m_tris.triangles[t][k]];
-    // A welded corner may have been evaluated in a neighbouring ptex face: its (u, v) there are not ours.
-    if (corner.ptex != c.ptex) return {-1, 0, 0};
-    c.u += w[k] * corner.u;
-    c.v += w[k] * corner.v;
+    c.u += w[k] * m_tris.triangle_uv[t][k].x();
+    c.v += w[k] * m_tris.triangle_uv[t][k].y();
   }
   return c;
 }
@@ -269,15 +280,84 @@ Attachment SurfaceProjector::attach(const Eigen::Vector3d& point, bool on_border
     if (best_t < 0)
       for (size_t t = 0; t < m_tris.triangles.size(); ++t) consider(static_cast<int>(t));  // far from the surface
   }
+  return finish(point, best_t, best_w);
+}
+
+Attachment SurfaceProjector::finish(const Eigen::Vector3d& point, int triangle, const Eigen::Vector3d& weights) const {
   Attachment a;
-  a.coord = coord_in(best_t, best_w);
-  if (a.coord.ptex < 0) {  // fall back to the nearest corner of the triangle, which lies in some ptex face
-    int k = 0;
-    best_w.maxCoeff(&k);
-    a.coord = m_tris.coords[m_tris.triangles[best_t][k]];
-  }
+  a.triangle = triangle;
+  a.coord = coord_in(triangle, weights);
   a.position = m_surface.evaluate(a.coord).position;
   a.distance = (a.position - point).norm();
+  return a;
+}
+
+Attachment SurfaceProjector::reattach(const Eigen::Vector3d& point, const Attachment& previous, bool on_border) const {
+  if (previous.triangle < 0) return attach(point, on_border);
+  // Walk: test the triangles (border edges) around the current best one's corners, move to the best, repeat.
+  int best_t = previous.triangle;
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_w = Eigen::Vector3d::Constant(1.0 / 3);
+  for (int round = 0; round < 64; ++round) {
+    const int start = best_t;
+    const auto& tri = m_tris.triangles[start];
+    for (int k = 0; k < 3; ++k) {
+      if (on_border) {
+        for (int e : m_vertex_border[tri[k]]) {
+          const Eigen::Vector3d &pa = m_tris.positions[m_tris.border[e].first], &pb = m_tris.positions[m_tris.border[e].second];
+          const double t = std::clamp((point - pa).dot(pb - pa) / std::max((pb - pa).squaredNorm(), 1e-300), 0.0, 1.0);
+          const double d = (pa + t * (pb - pa) - point).norm();
+          if (d < best) {
+            best = d, best_t = m_tris.border_triangle[e];
+            const auto& bt = m_tris.triangles[best_t];
+            best_w.setZero();
+            for (int c = 0; c < 3; ++c) {
+              if (bt[c] == m_tris.border[e].first) best_w[c] = 1 - t;
+              if (bt[c] == m_tris.border[e].second) best_w[c] = t;
+            }
+          }
+        }
+      } else {
+        for (int t : m_vertex_triangles[tri[k]]) {
+          const auto& c = m_tris.triangles[t];
+          const Eigen::Vector3d w = closest_on_triangle(point, m_tris.positions[c[0]], m_tris.positions[c[1]], m_tris.positions[c[2]]);
+          const double d = (w[0] * m_tris.positions[c[0]] + w[1] * m_tris.positions[c[1]] + w[2] * m_tris.positions[c[2]] - point).norm();
+          if (d < best) best = d, best_t = t, best_w = w;
+        }
+      }
+    }
+    if (best_t == start) break;
+  }
+  if (on_border && !std::isfinite(best)) return attach(point, true);  // the walk started away from the border
+  return finish(point, best_t, best_w);
+}
+
+Attachment SurfaceProjector::move(const Attachment& from, const Eigen::Vector3d& target, bool on_border) const {
+  constexpr double eps = 1e-12;
+  SurfaceCoord c = from.coord;
+  const bool u_fixed = on_border && (c.u < eps || c.u > 1 - eps), v_fixed = on_border && (c.v < eps || c.v > 1 - eps);
+  if (on_border && u_fixed == v_fixed) return reattach(target, from, on_border);  // a corner, or not on a ptex edge
+  for (int it = 0; it < 4; ++it) {
+    const SurfaceSample s = m_surface.evaluate(c);
+    const Eigen::Vector3d r = target - s.position;
+    if (u_fixed) {
+      c.v += s.dv.dot(r) / std::max(s.dv.squaredNorm(), 1e-300);
+    } else if (v_fixed) {
+      c.u += s.du.dot(r) / std::max(s.du.squaredNorm(), 1e-300);
+    } else {
+      Eigen::Matrix<double, 3, 2> J;
+      J << s.du, s.dv;
+      const Eigen::Vector2d d = (J.transpose() * J).ldlt().solve(J.transpose() * r);
+      c.u += d.x();
+      c.v += d.y();
+    }
+    if (c.u < -eps || c.u > 1 + eps || c.v < -eps || c.v > 1 + eps) return reattach(target, from, on_border);
+  }
+  Attachment a;
+  a.coord = {c.ptex, std::clamp(c.u, 0.0, 1.0), std::clamp(c.v, 0.0, 1.0)};
+  a.triangle = from.triangle;
+  a.position = m_surface.evaluate(a.coord).position;
+  a.distance = (a.position - target).norm();
   return a;
 }
 
@@ -290,6 +370,7 @@ StitchAttachment attach_stitch_mesh(const mesh::StitchMesh& stitch, const Surfac
     const Attachment a = projector.attach(stitch.vertices[v], out.on_border[v]);
     out.coords.push_back(a.coord);
     out.positions.push_back(a.position);
+    out.triangles.push_back(a.triangle);
     out.max_distance = std::max(out.max_distance, a.distance);
   }
   return out;

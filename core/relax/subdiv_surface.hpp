@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -57,6 +58,7 @@ struct SurfaceTriangles {
   std::vector<SurfaceCoord> coords;            ///< where each position was evaluated
   std::vector<Eigen::Vector3i> triangles;
   std::vector<int> triangle_ptex;              ///< every triangle lies in one ptex face
+  std::vector<std::array<Eigen::Vector2d, 3>> triangle_uv;  ///< its corners' (u, v) in that ptex face
   std::vector<std::pair<int, int>> border;     ///< edges on the surface border (vertex ids)
   std::vector<int> border_triangle;            ///< the triangle each border edge belongs to
 };
@@ -65,6 +67,7 @@ SurfaceTriangles triangulate(const SubdivSurface& surface, int samples_per_edge 
 /// Where a point lands on the surface: the closest point of the fine triangles, then the exact limit there.
 struct Attachment {
   SurfaceCoord coord;
+  int triangle = -1;                                   ///< of the fine approximation, to start the next search from
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< on the limit surface at coord
   double distance = 0;                                 ///< from the point projected [mm]
 };
@@ -75,6 +78,13 @@ class SurfaceProjector {
 public:
   SurfaceProjector(const SubdivSurface& surface, SurfaceTriangles triangles);
   Attachment attach(const Eigen::Vector3d& point, bool on_border = false) const;
+  /// The same for a point that moved a little since it was attached at `previous`: walks the fine triangles
+  /// (or border edges) from there instead of searching them all.
+  Attachment reattach(const Eigen::Vector3d& point, const Attachment& previous, bool on_border) const;
+  /// Moves an attachment toward `target` in the surface's own (u, v) (Gauss-Newton on the limit surface), so
+  /// that small moves stay exact; a border attachment keeps its border coordinate. Leaving the ptex face (or a
+  /// border corner) falls back to reattach().
+  Attachment move(const Attachment& from, const Eigen::Vector3d& target, bool on_border) const;
   const SurfaceTriangles& triangles() const { return m_tris; }
 
 private:
@@ -82,6 +92,9 @@ private:
   SurfaceTriangles m_tris;
   double m_cell = 1;
   std::vector<std::pair<std::uint64_t, int>> m_grid;  ///< (cell key, triangle), sorted
+  std::vector<std::vector<int>> m_vertex_triangles;    ///< fine triangles around each fine vertex
+  std::vector<std::vector<int>> m_vertex_border;       ///< border edges at each fine vertex
+  Attachment finish(const Eigen::Vector3d& point, int triangle, const Eigen::Vector3d& weights) const;
   std::uint64_t key(const Eigen::Vector3d& p) const;
   SurfaceCoord coord_in(int triangle, const Eigen::Vector3d& barycentric) const;
 };
@@ -91,6 +104,7 @@ private:
 struct StitchAttachment {
   std::vector<SurfaceCoord> coords;
   std::vector<Eigen::Vector3d> positions;  ///< on the limit surface [mm]
+  std::vector<int> triangles;              ///< fine triangle of each
   std::vector<char> on_border;
   double max_distance = 0;                 ///< largest move from the stitch mesh's own positions [mm]
 };

@@ -1,7 +1,10 @@
 #include "render/stitch_view.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "common/atomic_file.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::render {
@@ -47,6 +50,50 @@ std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, ColorBy color
     out.push_back(std::move(p));
   }
   return out;
+}
+
+Eigen::Vector3f strain_color(double strain, double range) {
+  const float t = static_cast<float>(std::clamp(strain / range, -1.0, 1.0));
+  const Eigen::Vector3f white(0.97f, 0.97f, 0.97f), red(0.8f, 0.1f, 0.1f), blue(0.15f, 0.3f, 0.85f);
+  return t >= 0 ? Eigen::Vector3f(white + t * (red - white)) : Eigen::Vector3f(white - t * (blue - white));
+}
+
+std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, const std::vector<Eigen::Vector3f>& face_colors) {
+  std::vector<Polygon> out;
+  out.reserve(mesh.faces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    Polygon p;
+    for (int v : mesh.faces[f].vertices) p.points.push_back(mesh.vertices[v]);
+    p.color = face_colors.at(f);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+void write_ply(const mesh::StitchMesh& mesh, const std::vector<Eigen::Vector3f>& face_colors,
+               const std::vector<std::pair<std::string, std::vector<double>>>& face_values, const std::filesystem::path& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "ply\nformat ascii 1.0\ncomment skein stitch mesh\nelement vertex " << mesh.vertices.size()
+        << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << mesh.faces.size()
+        << "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n";
+    for (const auto& [name, values] : face_values) out << "property float " << name << "\n";
+    out << "end_header\n";
+    char buf[128];
+    for (const auto& v : mesh.vertices) {
+      std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g\n", v.x(), v.y(), v.z());
+      out << buf;
+    }
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      out << mesh.faces[f].vertices.size();
+      for (int v : mesh.faces[f].vertices) out << ' ' << v;
+      for (int c = 0; c < 3; ++c) out << ' ' << std::clamp(static_cast<int>(std::lround(face_colors[f][c] * 255)), 0, 255);
+      for (const auto& [name, values] : face_values) {
+        std::snprintf(buf, sizeof buf, " %.6g", values[f]);
+        out << buf;
+      }
+      out << '\n';
+    }
+  });
 }
 
 }  // namespace skein::render

@@ -1,5 +1,7 @@
 #pragma once
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/raster.hpp"
@@ -16,5 +18,14 @@ Eigen::Vector3f row_color(int row);
 Eigen::Vector3f stitch_color(const std::string& type);
 
 std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, ColorBy color);
+
+/// Diverging colour for a strain: blue when compressed, white at rest, red when stretched; ±`range` saturates.
+Eigen::Vector3f strain_color(double strain, double range = 0.5);
+/// Polygons of a stitch mesh with one colour per face.
+std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, const std::vector<Eigen::Vector3f>& face_colors);
+
+/// A PLY (ASCII) of the stitch mesh with a colour per face and named float values per face, atomically.
+void write_ply(const mesh::StitchMesh& mesh, const std::vector<Eigen::Vector3f>& face_colors,
+               const std::vector<std::pair<std::string, std::vector<double>>>& face_values, const std::filesystem::path& path);
 
 }  // namespace skein::render

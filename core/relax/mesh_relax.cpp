@@ -1,0 +1,346 @@
+#include "relax/mesh_relax.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <Eigen/Dense>
+
+#include "common/error.hpp"
+#include "relax/mesh_forces.hpp"
+
+namespace skein::relax {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+void MeshRelaxOptions::validate() const {
+  const auto need = [](bool ok, const char* what, const std::string& rule) {
+    if (!ok) throw Error("", std::string("mesh relaxation option ") + what, rule);
+  };
+  need(alpha > 0 && alpha <= 1, "alpha", "must be in (0, 1]");
+  need(aspect > 0 && std::isfinite(aspect), "aspect", "must be positive");
+  need(k_stretch > 0 && k_shear >= 0 && k_wale >= 0, "stiffness", "stretch must be positive, shear and wale at least 0");
+  need(time_step >= 0 && std::isfinite(time_step), "time step", "must be 0 (automatic) or positive");
+  need(max_steps >= 0, "max steps", "must be at least 0");
+  need(tolerance > 0 && max_move > 0, "tolerance", "tolerance and max move must be positive");
+  need(cg_iterations > 0 && cg_tolerance > 0, "conjugate gradients", "iterations and tolerance must be positive");
+  need(samples_per_edge >= 1 && samples_per_edge <= 64, "samples per edge", "must be 1 to 64");
+}
+
+namespace {
+struct Spring {
+  int i, j;
+  double rest, stiffness;
+};
+struct Corner {
+  int i, j, k;
+};
+/// One term of the linear system: a symmetric block K on a pair (A gets −hK on both diagonals, +hK off them).
+struct PairBlock {
+  int i, j;
+  Mat3 K;
+};
+/// A rank-1 term c g gᵀ over three vertices (Gauss-Newton part of the shear).
+struct RankOne {
+  int v[3];
+  Vec3 g[3];
+  double c;
+};
+}  // namespace
+
+struct MeshRelaxer::Impl {
+  MeshRelaxOptions options;
+  SubdivSurface surface;
+  std::unique_ptr<SurfaceProjector> projector;
+  mesh::StitchMesh stitch;
+  std::vector<Attachment> at;
+  std::vector<Vec3> x;
+  std::vector<SurfaceCoord> coords;
+  std::vector<char> border;
+  std::vector<std::pair<int, int>> border_neighbours;  // -1 when not exactly two
+  std::vector<Spring> springs;
+  std::vector<Corner> shears, struts;
+  double r_course = 0, r_wale = 0, h = 0;
+  int steps_done = 0;
+
+  Impl(const std::vector<Vec3>& cp, const std::vector<std::vector<int>>& cf, const mesh::StitchMesh& s, const MeshRelaxOptions& o)
+      : options(o), surface(cp, cf), stitch(s) {}
+
+  double energy(const std::vector<Vec3>& p) const {
+    double e = 0;
+    for (const auto& s : springs) e += forces::stretch(p[s.i], p[s.j], s.rest, s.stiffness).energy;
+    for (const auto& c : shears) e += forces::shear(p[c.i], p[c.j], p[c.k], options.k_shear).energy;
+    for (const auto& c : struts) e += forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale).energy;
+    return e;
+  }
+
+  /// Forces at p and the definite parts of their Jacobians (so that I − hJ stays positive definite).
+  void assemble(const std::vector<Vec3>& p, std::vector<Vec3>& f, std::vector<PairBlock>& pairs, std::vector<RankOne>& ranks) const {
+    f.assign(p.size(), Vec3::Zero());
+    pairs.clear();
+    ranks.clear();
+    for (const auto& s : springs) {
+      const auto t = forces::stretch(p[s.i], p[s.j], s.rest, s.stiffness);
+      f[s.i] += t.force_i;
+      f[s.j] -= t.force_i;
+      // Drop the part that pushes sideways on a compressed spring (it makes the system indefinite).
+      const Vec3 w = p[s.i] - p[s.j];
+      const double d = std::max(w.norm(), 1e-12);
+      const Vec3 u = w / d;
+      const Mat3 uu = u * u.transpose();
+      pairs.push_back({s.i, s.j, s.stiffness / d * (std::min(s.rest / d - 1, 0.0) * (Mat3::Identity() - uu) - (s.rest / d) * uu)});
+    }
+    for (const auto& c : shears) {
+      const auto t = forces::shear(p[c.i], p[c.j], p[c.k], options.k_shear);
+      f[c.i] += t.force[0];
+      f[c.j] += t.force[1];
+      f[c.k] += t.force[2];
+      const Vec3 a = p[c.i] - p[c.j], b = p[c.k] - p[c.j];
+      ranks.push_back({{c.i, c.j, c.k}, {b, -a - b, a}, 0.5 * options.k_shear});
+    }
+    for (const auto& c : struts) {
+      const auto t = forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale);
+      f[c.i] += t.force_i;
+      f[c.k] -= t.force_i;
+      // The spring between i and k with its rest frozen at this state, definite part only.
+      const Vec3 w = p[c.i] - p[c.k];
+      const double d = std::max(w.norm(), 1e-12);
+      const double r = std::max(r_wale, (p[c.i] - p[c.j]).norm() + (p[c.k] - p[c.j]).norm());
+      const Vec3 u = w / d;
+      const Mat3 uu = u * u.transpose();
+      pairs.push_back({c.i, c.k, -options.k_wale * (std::max(1 / r - 1 / d, 0.0) * (Mat3::Identity() - uu) + (1 / r) * uu)});
+    }
+  }
+
+  /// y = (I − hJ) c, matrix-free.
+  void multiply(double step, const std::vector<PairBlock>& pairs, const std::vector<RankOne>& ranks, const std::vector<Vec3>& c, std::vector<Vec3>& y) const {
+    y = c;
+    for (const auto& b : pairs) {
+      const Vec3 t = -step * (b.K * (c[b.i] - c[b.j]));
+      y[b.i] += t;
+      y[b.j] -= t;
+    }
+    for (const auto& r : ranks) {
+      const double s = r.g[0].dot(c[r.v[0]]) + r.g[1].dot(c[r.v[1]]) + r.g[2].dot(c[r.v[2]]);
+      for (int q = 0; q < 3; ++q) y[r.v[q]] += step * r.c * s * r.g[q];
+    }
+  }
+
+  /// Baraff & Witkin 1998: the constraint filter of each vertex. The normal direction is never free; border
+  /// vertices may only slide along the border; a border vertex without two border neighbours is fixed.
+  std::vector<Mat3> filters() const {
+    std::vector<Mat3> S(x.size());
+    for (size_t v = 0; v < x.size(); ++v) {
+      const Vec3 n = surface.evaluate(coords[v]).normal();
+      if (!border[v]) {
+        S[v] = Mat3::Identity() - n * n.transpose();
+        continue;
+      }
+      const auto [a, b] = border_neighbours[v];
+      if (a < 0) {
+        S[v].setZero();
+        continue;
+      }
+      Vec3 t = x[b] - x[a];
+      t -= t.dot(n) * n;
+      S[v] = t.norm() > 0 ? Mat3(t.normalized() * t.normalized().transpose()) : Mat3::Zero();
+    }
+    return S;
+  }
+
+  /// Modified preconditioned conjugate gradients (Baraff & Witkin 1998, §5.3) with block-Jacobi preconditioning.
+  int solve(double step, const std::vector<PairBlock>& pairs, const std::vector<RankOne>& ranks, const std::vector<Mat3>& S,
+            const std::vector<Vec3>& rhs, std::vector<Vec3>& dx) const {
+    const size_t n = x.size();
+    std::vector<Mat3> diag(n, Mat3::Identity());
+    for (const auto& b : pairs) diag[b.i] -= step * b.K, diag[b.j] -= step * b.K;
+    for (const auto& r : ranks)
+      for (int q = 0; q < 3; ++q) diag[r.v[q]] += step * r.c * r.g[q] * r.g[q].transpose();
+    for (auto& d : diag) d = d.inverse().eval();
+    const auto dot = [&](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+      double s = 0;
+      for (size_t v = 0; v < n; ++v) s += a[v].dot(b[v]);
+      return s;
+    };
+    dx.assign(n, Vec3::Zero());
+    std::vector<Vec3> r(n), z(n), p(n), q(n);
+    for (size_t v = 0; v < n; ++v) r[v] = S[v] * rhs[v];
+    for (size_t v = 0; v < n; ++v) z[v] = S[v] * (diag[v] * r[v]);
+    p = z;
+    double delta = dot(r, z);
+    const double delta0 = delta;
+    int it = 0;
+    const double tol2 = options.cg_tolerance * options.cg_tolerance;
+    while (it < options.cg_iterations && delta > tol2 * delta0 && delta > 0) {
+      multiply(step, pairs, ranks, p, q);
+      for (size_t v = 0; v < n; ++v) q[v] = S[v] * q[v];
+      const double alpha = delta / dot(p, q);
+      for (size_t v = 0; v < n; ++v) dx[v] += alpha * p[v], r[v] -= alpha * q[v];
+      for (size_t v = 0; v < n; ++v) z[v] = S[v] * (diag[v] * r[v]);
+      const double next = dot(r, z);
+      for (size_t v = 0; v < n; ++v) p[v] = S[v] * (z[v] + (next / delta) * p[v]);
+      delta = next;
+      ++it;
+    }
+    return it;
+  }
+};
+
+MeshRelaxer::MeshRelaxer(const std::vector<Vec3>& control_points, const std::vector<std::vector<int>>& control_faces, const mesh::StitchMesh& stitch,
+                         const MeshRelaxOptions& options) {
+  options.validate();
+  const auto check = mesh::validate(stitch);
+  if (!check.valid()) throw Error("", "stitch mesh", "is not valid, so it cannot be relaxed:\n" + check.summary(5));
+  m = std::make_unique<Impl>(control_points, control_faces, stitch, options);
+  m->projector = std::make_unique<SurfaceProjector>(m->surface, triangulate(m->surface, options.samples_per_edge));
+
+  // Rest lengths (Yuksel §6.1): N r_wale r_course = α A, r_wale = a r_course.
+  double area = 0;
+  const auto& tris = m->projector->triangles();
+  for (const auto& t : tris.triangles)
+    area += 0.5 * (tris.positions[t[1]] - tris.positions[t[0]]).cross(tris.positions[t[2]] - tris.positions[t[0]]).norm();
+  m->r_course = std::sqrt(options.alpha * area / (static_cast<double>(stitch.faces.size()) * options.aspect));
+  m->r_wale = options.aspect * m->r_course;
+  m->h = options.time_step > 0 ? options.time_step : 10 * m->r_course;
+
+  // Attach every vertex; border vertices to the border. Each remembers its fine triangle for the walks.
+  const auto attached = attach_stitch_mesh(stitch, *m->projector);
+  m->border = attached.on_border;
+  m->coords = attached.coords;
+  m->x = attached.positions;
+  for (size_t v = 0; v < m->x.size(); ++v) m->at.push_back({attached.coords[v], attached.triangles[v], attached.positions[v], 0});
+
+  // Springs on every edge, with the wale or course rest length.
+  const auto table = mesh::edge_table(stitch);
+  std::vector<std::vector<int>> border_of(stitch.vertices.size());
+  for (const auto& [key, uses] : table) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    const bool wale = stitch.faces[uses.use[0].face].is_wale(uses.use[0].local);
+    m->springs.push_back({a, b, wale ? m->r_wale : m->r_course, options.k_stretch});
+    if (uses.count == 1) border_of[a].push_back(b), border_of[b].push_back(a);
+  }
+  std::sort(m->springs.begin(), m->springs.end(), [](const Spring& p, const Spring& q) { return std::pair(p.i, p.j) < std::pair(q.i, q.j); });
+  for (const auto& nb : border_of) m->border_neighbours.emplace_back(nb.size() == 2 ? nb[0] : -1, nb.size() == 2 ? nb[1] : -1);
+
+  // Sub-quads (Yuksel Fig. 15): an increase face is one sub-quad per top edge over its bottom edge, a decrease
+  // one per bottom edge under its top edge. Diagonal springs and shear at every corner.
+  const double diagonal = std::hypot(m->r_course, m->r_wale);
+  std::set<std::pair<int, int>> wale_edges;  // (bottom, top)
+  for (const auto& f : stitch.faces) {
+    const int n = f.size(), nb = f.bottom, nt = f.top();
+    const auto top = [&](int j) { return f.vertex(n - 1 - j); };  // top vertices left to right
+    std::vector<std::array<int, 4>> quads;
+    if (nb == 1)
+      for (int j = 0; j < nt; ++j) quads.push_back({f.vertex(0), f.vertex(1), top(j + 1), top(j)});
+    else
+      for (int i = 0; i < nb; ++i) quads.push_back({f.vertex(i), f.vertex(i + 1), top(1), top(0)});
+    for (const auto& q : quads) {
+      m->springs.push_back({q[0], q[2], diagonal, options.k_stretch});
+      m->springs.push_back({q[1], q[3], diagonal, options.k_stretch});
+      for (int c = 0; c < 4; ++c) m->shears.push_back({q[(c + 3) % 4], q[c], q[(c + 1) % 4]});
+    }
+    wale_edges.insert({f.vertex(0), f.vertex(n - 1)});
+    wale_edges.insert({f.vertex(nb), f.vertex(nb + 1)});
+  }
+  // Wale struts (eq. 4): a wale edge i-j and the wale edge j-k of the next row.
+  std::map<int, std::vector<int>> up_from;
+  for (const auto& [b, t] : wale_edges) up_from[b].push_back(t);
+  for (const auto& [i, j] : wale_edges) {
+    const auto it = up_from.find(j);
+    if (it == up_from.end()) continue;
+    for (int k : it->second) m->struts.push_back({i, j, k});
+  }
+}
+
+MeshRelaxer::~MeshRelaxer() = default;
+
+double MeshRelaxer::energy() const { return m->energy(m->x); }
+
+MeshRelaxStep MeshRelaxer::step() {
+  std::vector<Vec3> f, dx, next(m->x.size());
+  std::vector<PairBlock> pairs;
+  std::vector<RankOne> ranks;
+  m->assemble(m->x, f, pairs, ranks);
+  const auto S = m->filters();
+  const double e0 = m->energy(m->x);
+  MeshRelaxStep out;
+  out.step = ++m->steps_done;
+  std::vector<Attachment> moved(m->x.size());
+  double step = m->h;
+  for (int attempt = 0; attempt < 12; ++attempt, step *= 0.5) {
+    std::vector<Vec3> rhs(f.size());
+    for (size_t v = 0; v < f.size(); ++v) rhs[v] = step * f[v];
+    out.cg_iterations = m->solve(step, pairs, ranks, S, rhs, dx);  // eq. 1: (I − h ∂f/∂x) Δx = h f0
+    const double limit = m->options.max_move * m->r_course;
+    for (size_t v = 0; v < dx.size(); ++v) {
+      if (dx[v].norm() > limit) dx[v] *= limit / dx[v].norm();
+      moved[v] = m->projector->move(m->at[v], m->x[v] + dx[v], m->border[v]);
+      next[v] = moved[v].position;
+    }
+    const double e1 = m->energy(next);
+    if (e1 <= e0) {
+      out.energy = e1;
+      out.time_step = step;
+      out.max_displacement = 0;
+      for (size_t v = 0; v < next.size(); ++v) out.max_displacement = std::max(out.max_displacement, (next[v] - m->x[v]).norm());
+      m->x = next;
+      m->at = moved;
+      for (size_t v = 0; v < moved.size(); ++v) m->coords[v] = moved[v].coord;
+      return out;
+    }
+  }
+  out.energy = e0;  // no step lowers the energy: a minimum, as far as this solver can tell
+  out.time_step = 0;
+  return out;
+}
+
+MeshRelaxReport MeshRelaxer::run(const std::function<void(const MeshRelaxStep&)>& on_step) {
+  MeshRelaxReport report;
+  report.r_course = m->r_course;
+  report.r_wale = m->r_wale;
+  report.initial_energy = energy();
+  for (int s = 0; s < m->options.max_steps; ++s) {
+    const MeshRelaxStep st = step();
+    report.steps.push_back(st);
+    if (on_step) on_step(st);
+    if (st.max_displacement < m->options.tolerance * m->r_course) {
+      report.converged = true;
+      break;
+    }
+  }
+  if (m->options.max_steps == 0) report.converged = false;
+  return report;
+}
+
+const std::vector<Vec3>& MeshRelaxer::positions() const { return m->x; }
+const std::vector<SurfaceCoord>& MeshRelaxer::coords() const { return m->coords; }
+const std::vector<char>& MeshRelaxer::on_border() const { return m->border; }
+const SubdivSurface& MeshRelaxer::surface() const { return m->surface; }
+double MeshRelaxer::r_course() const { return m->r_course; }
+double MeshRelaxer::r_wale() const { return m->r_wale; }
+
+mesh::StitchMesh MeshRelaxer::relaxed() const {
+  mesh::StitchMesh out = m->stitch;
+  out.vertices = m->x;
+  return out;
+}
+
+FaceStretch face_stretch(const mesh::StitchMesh& stitch, double r_course, double r_wale) {
+  FaceStretch out;
+  for (const auto& f : stitch.faces) {
+    double strain = 0;
+    Vec3 normal = Vec3::Zero();
+    for (int k = 0; k < f.size(); ++k) {
+      const Vec3 &a = stitch.vertices[f.vertex(k)], &b = stitch.vertices[f.vertex(k + 1)];
+      strain += (b - a).norm() / (f.is_wale(k) ? r_wale : r_course) - 1;
+      normal += a.cross(b);
+    }
+    out.edge_strain.push_back(strain / f.size());
+    out.area_strain.push_back(0.5 * normal.norm() / (std::max(f.bottom, f.top()) * r_course * r_wale) - 1);
+  }
+  return out;
+}
+
+}  // namespace skein::relax

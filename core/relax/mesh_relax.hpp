@@ -1,0 +1,81 @@
+#pragma once
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "relax/subdiv_surface.hpp"
+#include "stitchmesh/stitch_mesh.hpp"
+
+namespace skein::relax {
+
+/// Settings of the mesh-based relaxation (Yuksel 2012 §6.1); validate() is called once before work.
+struct MeshRelaxOptions {
+  double alpha = 0.9;        ///< rest-size scale: N r_wale r_course = α A (0 < α ≤ 1)
+  double aspect = 1.0;       ///< a = r_wale / r_course
+  double k_stretch = 2.0, k_shear = 0.2, k_wale = 2.0;
+  double time_step = 0;      ///< h of backward Euler [mm]; 0 = 10 r_course (large: close to Newton steps)
+  int max_steps = 200;
+  double tolerance = 0.01;   ///< stop when no vertex moves more than tolerance × r_course in a step
+  double max_move = 0.5;     ///< no vertex moves more than this × r_course in one step
+  int cg_iterations = 60;
+  double cg_tolerance = 1e-4;  ///< relative residual of the modified CG
+  int samples_per_edge = 8;    ///< fine triangles: samples along each ptex face edge
+  void validate() const;       ///< throws skein::Error naming the option
+};
+
+struct MeshRelaxStep {
+  int step = 0;
+  double energy = 0;
+  double max_displacement = 0;  ///< [mm]
+  int cg_iterations = 0;
+  double time_step = 0;         ///< h actually used (halved while the energy would rise)
+};
+
+struct MeshRelaxReport {
+  std::vector<MeshRelaxStep> steps;
+  bool converged = false;  ///< not converging is a result, not an error
+  double r_course = 0, r_wale = 0;
+  double initial_energy = 0;
+};
+
+/// Relaxes a stitch mesh on the Catmull-Clark limit surface of its input mesh (Yuksel 2012 §6.1): stretch
+/// springs (eq. 2) on wale and course edges and sub-quad diagonals, shear on every sub-quad corner (eq. 3),
+/// wale struts (eq. 4); backward Euler (eq. 1) solved by the modified conjugate gradients of Baraff & Witkin
+/// 1998 with the normal direction filtered out (border vertices may only slide along the border); vertices
+/// stay on the limit surface. A step that would raise the energy is retried with half the time step.
+class MeshRelaxer {
+public:
+  /// @param control_points, control_faces  the input mesh (plain values)
+  MeshRelaxer(const std::vector<Eigen::Vector3d>& control_points, const std::vector<std::vector<int>>& control_faces,
+              const mesh::StitchMesh& stitch, const MeshRelaxOptions& options = {});
+  ~MeshRelaxer();
+
+  double energy() const;
+  MeshRelaxStep step();
+  /// Steps until converged or max_steps; `on_step` sees every step (progress, logs).
+  MeshRelaxReport run(const std::function<void(const MeshRelaxStep&)>& on_step = {});
+
+  const std::vector<Eigen::Vector3d>& positions() const;
+  const std::vector<SurfaceCoord>& coords() const;
+  const std::vector<char>& on_border() const;
+  const SubdivSurface& surface() const;
+  double r_course() const;
+  double r_wale() const;
+  /// The stitch mesh with the relaxed positions.
+  mesh::StitchMesh relaxed() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> m;
+};
+
+/// Per-face stretch against the rest shape: the mean edge strain (|e| / rest − 1 over the face's edges) and the
+/// area strain (area / (sub-quads × r_course × r_wale) − 1).
+struct FaceStretch {
+  std::vector<double> edge_strain, area_strain;
+};
+FaceStretch face_stretch(const mesh::StitchMesh& stitch, double r_course, double r_wale);
+
+}  // namespace skein::relax

@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "garments.hpp"
+#include "relax/mesh_relax.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/tessellation.hpp"
+
+using namespace skein;
+
+namespace {
+/// A tube whose stitches are twice as narrow on one side: course edges with x > 0 carry twice the stitches.
+mesh::StitchMesh uneven_tube(const mesh::InputMesh& m) {
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  auto values = mesh::initial_values(m, l, {});
+  for (int e = 0; e < m.num_edges(); ++e) {
+    const auto [a, b] = m.edge_vertices(e);
+    if (l.edges[e] == mesh::EdgeLabel::Course && m.point(a).x() + m.point(b).x() > 0) values.edge[e] *= 2;
+  }
+  return mesh::tessellate(m, l, values);
+}
+
+double area_variation(const std::vector<Eigen::Vector3d>& x, const mesh::StitchMesh& s) {
+  std::vector<double> areas;
+  for (const auto& f : s.faces) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (int k = 0; k < f.size(); ++k) n += x[f.vertex(k)].cross(x[f.vertex(k + 1)]);
+    areas.push_back(0.5 * n.norm());
+  }
+  double mean = 0, var = 0;
+  for (double a : areas) mean += a / areas.size();
+  for (double a : areas) var += (a - mean) * (a - mean) / areas.size();
+  return std::sqrt(var) / mean;
+}
+}  // namespace
+
+TEST(MeshRelax, UnevenTubeBecomesUniformOnTheSurface) {
+  const auto m = models::tube();
+  const auto s = uneven_tube(m);
+  relax::MeshRelaxer relaxer(m.points(), m.faces(), s);
+  const double before = area_variation(relaxer.positions(), s);
+  const double size = m.bounding_diagonal();
+  const auto& tris = relax::triangulate(relaxer.surface(), 8);
+  double energy = relaxer.energy();
+  relax::MeshRelaxReport report;
+  for (int step = 0; step < 200; ++step) {
+    const auto st = relaxer.step();
+    report.steps.push_back(st);
+    // Energy never rises; every vertex stays on the limit surface; border vertices stay on the border.
+    EXPECT_LE(st.energy, energy * (1 + 1e-12)) << "step " << st.step;
+    energy = st.energy;
+    for (size_t v = 0; v < relaxer.positions().size(); ++v) {
+      ASSERT_LT((relaxer.surface().evaluate(relaxer.coords()[v]).position - relaxer.positions()[v]).norm(), 1e-6 * size);
+      if (!relaxer.on_border()[v]) continue;
+      double to_border = 1e9;
+      for (const auto& [a, b] : tris.border) {
+        const Eigen::Vector3d pa = tris.positions[a], pb = tris.positions[b], x = relaxer.positions()[v];
+        const double t = std::clamp((x - pa).dot(pb - pa) / (pb - pa).squaredNorm(), 0.0, 1.0);
+        to_border = std::min(to_border, (pa + t * (pb - pa) - x).norm());
+      }
+      ASSERT_LT(to_border, 1e-3 * size) << "border vertex " << v << " left the border";
+    }
+    if (st.max_displacement < 0.01 * relaxer.r_course()) break;
+  }
+  const double after = area_variation(relaxer.positions(), s);
+  std::printf("  face-area variation %.3f -> %.3f in %zu steps\n", before, after, report.steps.size());
+  EXPECT_LE(after, 0.5 * before);
+}
+
+TEST(MeshRelax, RunsAreDeterministic) {
+  const auto m = models::tube();
+  const auto s = uneven_tube(m);
+  relax::MeshRelaxOptions o;
+  o.max_steps = 5;
+  relax::MeshRelaxer a(m.points(), m.faces(), s, o), b(m.points(), m.faces(), s, o);
+  a.run();
+  b.run();
+  EXPECT_EQ(a.positions(), b.positions());
+}
+
+TEST(MeshRelax, RestLengthsFollowTheSurfaceArea) {
+  // N r_wale r_course = α A (Yuksel §6.1) on a flat swatch, whose area is known: 120 × 100 mm.
+  const auto m = models::swatch();
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  const auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {}));
+  relax::MeshRelaxOptions o;
+  o.alpha = 0.8;
+  o.aspect = 0.75;
+  relax::MeshRelaxer r(m.points(), m.faces(), s, o);
+  EXPECT_NEAR(s.faces.size() * r.r_course() * r.r_wale(), 0.8 * 120 * 100, 1e-6);
+  EXPECT_NEAR(r.r_wale() / r.r_course(), 0.75, 1e-12);
+  const auto stretch = relax::face_stretch(s, r.r_course(), r.r_wale());
+  EXPECT_EQ(stretch.area_strain.size(), s.faces.size());
+}
+
+TEST(MeshRelax, OptionsAndInputsAreChecked) {
+  const auto m = models::swatch();
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {}));
+  relax::MeshRelaxOptions bad;
+  bad.alpha = 1.5;
+  EXPECT_THROW(relax::MeshRelaxer(m.points(), m.faces(), s, bad), Error);
+  s.faces[0].type = "kp";
+  EXPECT_THROW(relax::MeshRelaxer(m.points(), m.faces(), s), Error);
+}
