@@ -8,7 +8,9 @@ trap 'rm -rf "$tmp"' EXIT
 out=docs/images
 "$skein" -q stitch models/sweater.obj --labels models/sweater.skein -o "$tmp/sweater.skein" --png "$out/sweater-rows.png"
 "$skein" -q edit "$tmp/sweater.skein" --fill rib2x2 --near-border 12 -o "$tmp/sweater.skein" --png-types "$out/sweater-stitch-types.png"
-"$skein" -q render "$tmp/sweater.skein" --yarn -o "$out/sweater-yarn.png"
+"$skein" -q relax-mesh "$tmp/sweater.skein" -o "$tmp/relaxed.skein" --png-before "$out/sweater-stretch-before.png" \
+    --png "$out/sweater-stretch-after.png"
+"$skein" -q render "$tmp/relaxed.skein" --yarn -o "$out/sweater-yarn.png"
 build/bin/skein-sampler "$tmp" >/dev/null
 "$skein" -q render "$tmp/sampler.skein" --views flat --color type -o "$out/sampler-stitch-types.png"
 "$skein" -q render "$tmp/sampler.skein" --yarn --views flat -o "$out/sampler-yarn.png"

@@ -284,6 +284,8 @@ int main(int argc, char** argv) {
   relax_cmd->add_option("--k-stretch", relax_options.k_stretch, "stretch stiffness κ_stretch")->capture_default_str();
   relax_cmd->add_option("--k-shear", relax_options.k_shear, "shear stiffness κ_shear")->capture_default_str();
   relax_cmd->add_option("--k-wale", relax_options.k_wale, "wale strut stiffness κ_wale")->capture_default_str();
+  relax_cmd->add_option("--max-move", relax_options.max_move, "largest move of a vertex in one step, × r_course")->capture_default_str();
+  relax_cmd->add_option("--cg-iterations", relax_options.cg_iterations, "conjugate-gradient iterations per step, at most")->capture_default_str();
 
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");

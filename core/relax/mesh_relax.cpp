@@ -132,6 +132,7 @@ struct MeshRelaxer::Impl {
   /// vertices may only slide along the border; a border vertex without two border neighbours is fixed.
   std::vector<Mat3> filters() const {
     std::vector<Mat3> S(x.size());
+#pragma omp parallel for schedule(static)
     for (size_t v = 0; v < x.size(); ++v) {
       const Vec3 n = surface.evaluate(coords[v]).normal();
       if (!border[v]) {
@@ -274,6 +275,8 @@ MeshRelaxStep MeshRelaxer::step() {
     for (size_t v = 0; v < f.size(); ++v) rhs[v] = step * f[v];
     out.cg_iterations = m->solve(step, pairs, ranks, S, rhs, dx);  // eq. 1: (I − h ∂f/∂x) Δx = h f0
     const double limit = m->options.max_move * m->r_course;
+    // Every vertex moves on its own: the loop splits across threads without changing the result.
+#pragma omp parallel for schedule(static)
     for (size_t v = 0; v < dx.size(); ++v) {
       if (dx[v].norm() > limit) dx[v] *= limit / dx[v].norm();
       moved[v] = m->projector->move(m->at[v], m->x[v] + dx[v], m->border[v]);
