@@ -233,6 +233,19 @@ SurfaceCoord SurfaceProjector::coord_in(int t, const Eigen::Vector3d& w) const {
   return c;
 }
 
+SurfaceProjector::BorderHit SurfaceProjector::border_hit(const Eigen::Vector3d& point, int e) const {
+  const auto [a, b] = m_tris.border[e];
+  const Eigen::Vector3d &pa = m_tris.positions[a], &pb = m_tris.positions[b];
+  const double t = std::clamp((point - pa).dot(pb - pa) / std::max((pb - pa).squaredNorm(), 1e-300), 0.0, 1.0);
+  BorderHit hit{(pa + t * (pb - pa) - point).norm(), m_tris.border_triangle[e], Eigen::Vector3d::Zero()};
+  const auto& tri = m_tris.triangles[hit.triangle];
+  for (int k = 0; k < 3; ++k) {
+    if (tri[k] == a) hit.weights[k] = 1 - t;
+    if (tri[k] == b) hit.weights[k] = t;
+  }
+  return hit;
+}
+
 Attachment SurfaceProjector::attach(const Eigen::Vector3d& point, bool on_border) const {
   double best = std::numeric_limits<double>::infinity();
   int best_t = -1;
@@ -244,25 +257,10 @@ Attachment SurfaceProjector::attach(const Eigen::Vector3d& point, bool on_border
     if (d < best) best = d, best_t = t, best_w = w;
   };
   if (on_border) {
-    // The closest border edge, then the triangle that owns it.
-    double best_edge = std::numeric_limits<double>::infinity();
-    size_t edge = 0;
-    double at = 0;
-    for (size_t e = 0; e < m_tris.border.size(); ++e) {
-      const Eigen::Vector3d &pa = m_tris.positions[m_tris.border[e].first], &pb = m_tris.positions[m_tris.border[e].second];
-      const double t = std::clamp((point - pa).dot(pb - pa) / std::max((pb - pa).squaredNorm(), 1e-300), 0.0, 1.0);
-      const double d = (pa + t * (pb - pa) - point).norm();
-      if (d < best_edge) best_edge = d, edge = e, at = t;
-    }
+    // The closest border edge, and the triangle that owns it.
     if (m_tris.border.empty()) throw Error("", "border attachment", "the surface has no border");
-    best_t = m_tris.border_triangle[edge];
-    best = best_edge;
-    best_w.setZero();
-    const auto& tri = m_tris.triangles[best_t];
-    for (int k = 0; k < 3; ++k) {
-      if (tri[k] == m_tris.border[edge].first) best_w[k] = 1 - at;
-      if (tri[k] == m_tris.border[edge].second) best_w[k] = at;
-    }
+    for (size_t e = 0; e < m_tris.border.size(); ++e)
+      if (const BorderHit hit = border_hit(point, static_cast<int>(e)); hit.distance < best) best = hit.distance, best_t = hit.triangle, best_w = hit.weights;
   } else {
     // Grow the searched block of cells until the best distance found is certain.
     const auto q = (point / m_cell).array().floor().cast<std::int64_t>();
@@ -303,20 +301,8 @@ Attachment SurfaceProjector::reattach(const Eigen::Vector3d& point, const Attach
     const auto& tri = m_tris.triangles[start];
     for (int k = 0; k < 3; ++k) {
       if (on_border) {
-        for (int e : m_vertex_border[tri[k]]) {
-          const Eigen::Vector3d &pa = m_tris.positions[m_tris.border[e].first], &pb = m_tris.positions[m_tris.border[e].second];
-          const double t = std::clamp((point - pa).dot(pb - pa) / std::max((pb - pa).squaredNorm(), 1e-300), 0.0, 1.0);
-          const double d = (pa + t * (pb - pa) - point).norm();
-          if (d < best) {
-            best = d, best_t = m_tris.border_triangle[e];
-            const auto& bt = m_tris.triangles[best_t];
-            best_w.setZero();
-            for (int c = 0; c < 3; ++c) {
-              if (bt[c] == m_tris.border[e].first) best_w[c] = 1 - t;
-              if (bt[c] == m_tris.border[e].second) best_w[c] = t;
-            }
-          }
-        }
+        for (int e : m_vertex_border[tri[k]])
+          if (const BorderHit hit = border_hit(point, e); hit.distance < best) best = hit.distance, best_t = hit.triangle, best_w = hit.weights;
       } else {
         for (int t : m_vertex_triangles[tri[k]]) {
           const auto& c = m_tris.triangles[t];

@@ -95,6 +95,13 @@ private:
   std::vector<std::vector<int>> m_vertex_triangles;    ///< fine triangles around each fine vertex
   std::vector<std::vector<int>> m_vertex_border;       ///< border edges at each fine vertex
   Attachment finish(const Eigen::Vector3d& point, int triangle, const Eigen::Vector3d& weights) const;
+  /// The closest point of border edge e: its distance, the edge's triangle and the point's weights there.
+  struct BorderHit {
+    double distance;
+    int triangle;
+    Eigen::Vector3d weights;
+  };
+  BorderHit border_hit(const Eigen::Vector3d& point, int e) const;
   std::uint64_t key(const Eigen::Vector3d& p) const;
   SurfaceCoord coord_in(int triangle, const Eigen::Vector3d& barycentric) const;
 };
