@@ -284,6 +284,7 @@ int main(int argc, char** argv) {
   relax_cmd->add_option("--k-stretch", relax_options.k_stretch, "stretch stiffness κ_stretch")->capture_default_str();
   relax_cmd->add_option("--k-shear", relax_options.k_shear, "shear stiffness κ_shear")->capture_default_str();
   relax_cmd->add_option("--k-wale", relax_options.k_wale, "wale strut stiffness κ_wale")->capture_default_str();
+  relax_cmd->add_option("--k-fold", relax_options.k_fold, "stiffness of the guard against stitches turning over (0: off)")->capture_default_str();
   relax_cmd->add_option("--max-move", relax_options.max_move, "largest move of a vertex in one step, × r_course")->capture_default_str();
   relax_cmd->add_option("--cg-iterations", relax_options.cg_iterations, "conjugate-gradient iterations per step, at most")->capture_default_str();
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 namespace skein::relax::forces {
 
 Stretch stretch(const Vec3& xi, const Vec3& xj, double rest, double k) {
@@ -52,6 +54,20 @@ Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wal
     out.jacobian[0][b] = dfi;
     out.jacobian[1][b] = -dfi;  // f_k = −f_i
   }
+  return out;
+}
+
+FoldGuard fold_guard(const Vec3& xi, const Vec3& xj, const Vec3& xk, const Vec3& n, double a0, double t0, double k) {
+  const Vec3 e1 = xi - xj, e2 = xk - xj;
+  const double a = e1.cross(e2).dot(n);
+  const double phi = std::max(0.0, t0 - a / a0);
+  FoldGuard out;
+  out.gradient[0] = e2.cross(n);  // (e1 × e2)·n = e1·(e2 × n) = e2·(n × e1)
+  out.gradient[2] = n.cross(e1);
+  out.gradient[1] = -out.gradient[0] - out.gradient[2];
+  out.energy = 0.5 * k * a0 * phi * phi;
+  out.active = phi > 0;
+  for (int p = 0; p < 3; ++p) out.force[p] = k * phi * out.gradient[p];  // −dE/dx = k a0 φ (da/dx) / a0
   return out;
 }
 

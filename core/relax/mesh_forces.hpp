@@ -39,4 +39,16 @@ struct Strut {
 };
 Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale, double stiffness);
 
+/// Keeps a stitch from turning over (not in Yuksel 2012): at a sub-quad corner j with neighbours i and k, the
+/// signed area a = ((x_i − x_j) × (x_k − x_j))·n against the surface normal n is held above t0 a0 by
+/// E = κ a0 φ²/2, φ = max(0, t0 − a/a0), a0 the rest corner area. n is fixed, so E is a function of x.
+/// Forces on (i, j, k); `gradient` is da/dx (the Jacobian's Gauss-Newton part is −κ/a0 g gᵀ when active).
+struct FoldGuard {
+  double energy;
+  Vec3 force[3];
+  Vec3 gradient[3];
+  bool active;
+};
+FoldGuard fold_guard(const Vec3& xi, const Vec3& xj, const Vec3& xk, const Vec3& normal, double rest_area, double threshold, double stiffness);
+
 }  // namespace skein::relax::forces

@@ -21,7 +21,8 @@ void MeshRelaxOptions::validate() const {
   };
   need(alpha > 0 && alpha <= 1, "alpha", "must be in (0, 1]");
   need(aspect > 0 && std::isfinite(aspect), "aspect", "must be positive");
-  need(k_stretch > 0 && k_shear >= 0 && k_wale >= 0, "stiffness", "stretch must be positive, shear and wale at least 0");
+  need(k_stretch > 0 && k_shear >= 0 && k_wale >= 0 && k_fold >= 0, "stiffness", "stretch must be positive, the others at least 0");
+  need(fold_area > 0 && fold_area < 1, "fold area", "must be in (0, 1)");
   need(time_step >= 0 && std::isfinite(time_step), "time step", "must be 0 (automatic) or positive");
   need(max_steps >= 0, "max steps", "must be at least 0");
   need(tolerance > 0 && max_move > 0, "tolerance", "tolerance and max move must be positive");
@@ -62,6 +63,7 @@ struct MeshRelaxer::Impl {
   std::vector<std::pair<int, int>> border_neighbours;  // -1 when not exactly two
   std::vector<Spring> springs;
   std::vector<Corner> shears, struts;
+  std::vector<Vec3> corner_normal;  // surface normal at each shear corner's middle vertex, at attachment
   double r_course = 0, r_wale = 0, h = 0;
   int steps_done = 0;
 
@@ -73,6 +75,12 @@ struct MeshRelaxer::Impl {
     for (const auto& s : springs) e += forces::stretch(p[s.i], p[s.j], s.rest, s.stiffness).energy;
     for (const auto& c : shears) e += forces::shear(p[c.i], p[c.j], p[c.k], options.k_shear).energy;
     for (const auto& c : struts) e += forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale).energy;
+    if (options.k_fold > 0)
+      for (size_t q = 0; q < shears.size(); ++q) {
+        const auto& c = shears[q];
+        // Shear corners run (previous, corner, next) counter-clockwise; the guard's area wants (next, corner, previous).
+        e += forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, options.k_fold).energy;
+      }
     return e;
   }
 
@@ -100,6 +108,16 @@ struct MeshRelaxer::Impl {
       const Vec3 a = p[c.i] - p[c.j], b = p[c.k] - p[c.j];
       ranks.push_back({{c.i, c.j, c.k}, {b, -a - b, a}, 0.5 * options.k_shear});
     }
+    if (options.k_fold > 0)
+      for (size_t q = 0; q < shears.size(); ++q) {
+        const auto& c = shears[q];
+        const auto t = forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, options.k_fold);
+        if (!t.active) continue;
+        f[c.k] += t.force[0];
+        f[c.j] += t.force[1];
+        f[c.i] += t.force[2];
+        ranks.push_back({{c.k, c.j, c.i}, {t.gradient[0], t.gradient[1], t.gradient[2]}, options.k_fold / (r_course * r_wale)});
+      }
     for (const auto& c : struts) {
       const auto t = forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale);
       f[c.i] += t.force_i;
@@ -245,6 +263,7 @@ MeshRelaxer::MeshRelaxer(const std::vector<Vec3>& control_points, const std::vec
     wale_edges.insert({f.vertex(0), f.vertex(n - 1)});
     wale_edges.insert({f.vertex(nb), f.vertex(nb + 1)});
   }
+  for (const auto& c : m->shears) m->corner_normal.push_back(m->surface.evaluate(m->coords[c.j]).normal());
   // Wale struts (eq. 4): a wale edge i-j and the wale edge j-k of the next row.
   std::map<int, std::vector<int>> up_from;
   for (const auto& [b, t] : wale_edges) up_from[b].push_back(t);

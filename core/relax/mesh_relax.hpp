@@ -15,6 +15,8 @@ struct MeshRelaxOptions {
   double alpha = 0.9;        ///< rest-size scale: N r_wale r_course = α A (0 < α ≤ 1)
   double aspect = 1.0;       ///< a = r_wale / r_course
   double k_stretch = 2.0, k_shear = 0.2, k_wale = 2.0;
+  double k_fold = 2.0;       ///< keeps stitches from turning over (0 = off); not in Yuksel 2012
+  double fold_area = 0.25;   ///< the guard acts below this fraction of the rest corner area
   double time_step = 0;      ///< h of backward Euler [mm]; 0 = 10 r_course (large: close to Newton steps)
   int max_steps = 200;
   double tolerance = 0.01;   ///< stop when no vertex moves more than tolerance × r_course in a step

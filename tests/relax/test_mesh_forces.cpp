@@ -98,3 +98,26 @@ TEST(MeshForces, WaleStrutJacobianMatchesWithAndWithoutItsMovingRest) {
   const auto bent = wale_strut(Vec3(0, 0, 0), Vec3(3, 4, 0), Vec3(0, 8, 0), 4.0, 2.0);
   EXPECT_LT(bent.force_i.y(), 0);
 }
+
+TEST(MeshForces, FoldGuardIsTheEnergyGradientAndOnlyActsOnSquashedCorners) {
+  const Vec3 n(0, 0, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    Vec3 x[3] = {random_point(), random_point(), random_point()};
+    const auto g = fold_guard(x[0], x[1], x[2], n, 20.0, 0.25, 2.0);
+    for (int a = 0; a < 3; ++a) {
+      const auto energy_at = [&](const Vec3& p) {
+        Vec3 y[3] = {x[0], x[1], x[2]};
+        y[a] = p;
+        return fold_guard(y[0], y[1], y[2], n, 20.0, 0.25, 2.0).energy;
+      };
+      EXPECT_LT((g.force[a] + numeric_gradient(energy_at, x[a])).norm(), 1e-5 * std::max(1.0, g.force[a].norm()));
+    }
+  }
+  // A healthy right-angled corner feels nothing; the same corner turned over is pushed back.
+  const auto healthy = fold_guard(Vec3(5, 0, 0), Vec3::Zero(), Vec3(0, 4, 0), n, 20.0, 0.25, 2.0);
+  EXPECT_FALSE(healthy.active);
+  EXPECT_EQ(healthy.energy, 0.0);
+  const auto turned = fold_guard(Vec3(0, 4, 0), Vec3::Zero(), Vec3(5, 0, 0), n, 20.0, 0.25, 2.0);
+  EXPECT_TRUE(turned.active);
+  EXPECT_GT(turned.energy, 0.0);
+}

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "common/error.hpp"
 #include "garments.hpp"
 #include "relax/mesh_relax.hpp"
@@ -105,4 +107,37 @@ TEST(MeshRelax, OptionsAndInputsAreChecked) {
   EXPECT_THROW(relax::MeshRelaxer(m.points(), m.faces(), s, bad), Error);
   s.faces[0].type = "kp";
   EXPECT_THROW(relax::MeshRelaxer(m.points(), m.faces(), s), Error);
+}
+
+namespace {
+int turned_over(const relax::MeshRelaxer& r, const mesh::StitchMesh& s) {
+  int n = 0;
+  for (const auto& f : s.faces) {
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (int k = 0; k < f.size(); ++k) normal += r.positions()[f.vertex(k)].cross(r.positions()[f.vertex(k + 1)]);
+    n += normal.dot(r.surface().evaluate(r.coords()[f.vertex(0)]).normal()) <= 0;
+  }
+  return n;
+}
+}  // namespace
+
+TEST(MeshRelax, TurnedOverStitchesAreTurnedBack) {
+  const auto m = models::tube();
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {}));
+  // Throw stitches' top-right corners across their diagonals (bottom-right to top-left): they turn over.
+  const auto rows = mesh::faces_by_row(s);
+  for (int r = 4; r < 24; r += 4)
+    for (int c = 2; c < 60; c += 30) {
+      const auto& f = s.faces[rows[r][c]];
+      const int br = f.vertex(f.bottom), tr = f.vertex(f.bottom + 1), tl = f.vertex(f.size() - 1);
+      s.vertices[tr] = 2.0 * (s.vertices[br] + s.vertices[tl]) - 3.0 * s.vertices[tr];
+    }
+  relax::MeshRelaxer relaxer(m.points(), m.faces(), s);
+  const int before = turned_over(relaxer, s);
+  EXPECT_GT(before, 0);
+  const auto report = relaxer.run();
+  EXPECT_TRUE(report.converged);
+  EXPECT_EQ(turned_over(relaxer, s), 0) << "turned over before relaxation: " << before;
+  std::printf("  turned over: %d after attachment, %d after relaxation\n", before, turned_over(relaxer, s));
 }
