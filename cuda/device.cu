@@ -1,5 +1,3 @@
-#include <cstdio>
-
 #include "cuda/check.cuh"
 #include "cuda/device.hpp"
 

@@ -129,10 +129,7 @@ SurfaceTriangles triangulate(const SubdivSurface& surface, int n) {
     const Eigen::Vector3d x = surface.evaluate(c).position;
     const std::array<long long, 3> key{std::llround(x.x() / lattice), std::llround(x.y() / lattice), std::llround(x.z() / lattice)};
     const auto [it, inserted] = welded.try_emplace(key, static_cast<int>(out.positions.size()));
-    if (inserted) {
-      out.positions.push_back(x);
-      out.coords.push_back(c);
-    }
+    if (inserted) out.positions.push_back(x);
     return it->second;
   };
   std::map<std::pair<int, int>, std::pair<int, int>> edge_uses;  // edge → (uses, a triangle)

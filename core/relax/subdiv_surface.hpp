@@ -55,7 +55,6 @@ private:
 /// triangles, samples shared along ptex edges welded. Used to project points onto the surface (Yuksel §6.1).
 struct SurfaceTriangles {
   std::vector<Eigen::Vector3d> positions;      ///< on the limit surface
-  std::vector<SurfaceCoord> coords;            ///< where each position was evaluated
   std::vector<Eigen::Vector3i> triangles;
   std::vector<int> triangle_ptex;              ///< every triangle lies in one ptex face
   std::vector<std::array<Eigen::Vector2d, 3>> triangle_uv;  ///< its corners' (u, v) in that ptex face

@@ -175,6 +175,25 @@ std::vector<std::vector<Eigen::Vector3d>> sample_curves(const YarnCurves& yarn, 
   return out;
 }
 
+std::vector<std::vector<Eigen::Vector3d>> tube_rings(const std::vector<Eigen::Vector3d>& pts, double radius, int sides) {
+  std::vector<std::vector<Eigen::Vector3d>> rings;
+  if (pts.size() < 2) return rings;
+  Eigen::Vector3d normal = (pts[1] - pts[0]).normalized().unitOrthogonal();
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Eigen::Vector3d t = (pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1]).normalized();
+    normal -= normal.dot(t) * t;  // parallel transport
+    normal = normal.norm() > 1e-9 ? normal.normalized() : t.unitOrthogonal();
+    const Eigen::Vector3d binormal = t.cross(normal);
+    std::vector<Eigen::Vector3d> ring;
+    for (int k = 0; k < sides; ++k) {
+      const double a = 2 * M_PI * k / sides;
+      ring.push_back(pts[i] + radius * (std::cos(a) * normal + std::sin(a) * binormal));
+    }
+    rings.push_back(std::move(ring));
+  }
+  return rings;
+}
+
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
   const auto curves = sample_curves(yarn, std::max(1, options.samples_per_segment));
   write_file_atomically(path, [&](std::ostream& out) {
@@ -185,21 +204,11 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
       const auto& pts = curves[c];
       if (pts.size() < 2) continue;
       out << "o yarn" << c << '\n';
-      // Parallel-transported frame along the curve, so the tube does not twist.
-      Eigen::Vector3d t0 = (pts[1] - pts[0]).normalized();
-      Eigen::Vector3d n0 = t0.unitOrthogonal();
-      for (size_t i = 0; i < pts.size(); ++i) {
-        const Eigen::Vector3d t = (pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1]).normalized();
-        n0 = (n0 - n0.dot(t) * t);
-        n0 = n0.norm() > 1e-9 ? n0.normalized() : t.unitOrthogonal();
-        const Eigen::Vector3d b0 = t.cross(n0);
-        for (int k = 0; k < options.sides; ++k) {
-          const double a = 2 * M_PI * k / options.sides;
-          const Eigen::Vector3d p = pts[i] + yarn.radius * (std::cos(a) * n0 + std::sin(a) * b0);
+      for (const auto& ring : tube_rings(pts, yarn.radius, options.sides))
+        for (const auto& p : ring) {
           std::snprintf(buf, sizeof buf, "v %.6g %.6g %.6g\n", p.x(), p.y(), p.z());
           out << buf;
         }
-      }
       for (size_t i = 0; i + 1 < pts.size(); ++i)
         for (int k = 0; k < options.sides; ++k) {
           const long a = base + static_cast<long>(i) * options.sides + k, b = base + static_cast<long>(i) * options.sides + (k + 1) % options.sides;

@@ -27,6 +27,10 @@ struct TubeOptions {
 };
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
 
+/// Rings of `sides` points of the given radius around a sampled curve, in a parallel-transported frame so
+/// that the tube does not twist: one ring per sample.
+std::vector<std::vector<Eigen::Vector3d>> tube_rings(const std::vector<Eigen::Vector3d>& samples, double radius, int sides);
+
 /// Samples the Catmull-Rom curves (uniform parameterisation, as in the .bcc "C0" type).
 std::vector<std::vector<Eigen::Vector3d>> sample_curves(const YarnCurves& yarn, int samples_per_segment);
 

@@ -16,20 +16,7 @@ std::vector<Polygon> yarn_polygons(const mesh::YarnCurves& yarn, YarnColor color
     const auto& pts = curves[c];
     if (pts.size() < 2) continue;
     const int n = yarn.curve_size(c), first = yarn.curve_start[c];
-    std::vector<std::vector<Eigen::Vector3d>> rings;
-    Eigen::Vector3d normal = (pts[1] - pts[0]).normalized().unitOrthogonal();
-    for (size_t i = 0; i < pts.size(); ++i) {
-      const Eigen::Vector3d t = (pts[std::min(i + 1, pts.size() - 1)] - pts[i == 0 ? 0 : i - 1]).normalized();
-      normal -= normal.dot(t) * t;  // parallel transport: the tube does not twist
-      normal = normal.norm() > 1e-9 ? normal.normalized() : t.unitOrthogonal();
-      const Eigen::Vector3d binormal = t.cross(normal);
-      std::vector<Eigen::Vector3d> ring;
-      for (int k = 0; k < sides; ++k) {
-        const double a = 2 * M_PI * k / sides;
-        ring.push_back(pts[i] + yarn.radius * (std::cos(a) * normal + std::sin(a) * binormal));
-      }
-      rings.push_back(std::move(ring));
-    }
+    const auto rings = relax::tube_rings(pts, yarn.radius, sides);
     for (size_t i = 0; i + 1 < rings.size(); ++i) {
       Eigen::Vector3f rgb;
       if (color == YarnColor::Yarn || yarn.point_type.empty() || yarn.point_type[first] < 0) {
