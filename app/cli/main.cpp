@@ -7,6 +7,9 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <set>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -16,6 +19,9 @@
 #include "common/error.hpp"
 #include "cuda/device.hpp"
 #include "relax/mesh_relax.hpp"
+#include "relax/yarn_audit.hpp"
+#include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_relax.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
@@ -189,6 +195,37 @@ std::pair<int, int> parse_assignment(const std::string& option, const std::strin
   return {k, v};
 }
 
+/// A one-line progress bar with an ETA on a terminal; nothing otherwise.
+class ProgressBar {
+public:
+  explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
+  /// `done` in [0, 1].
+  void show(double done, const std::string& text) {
+    if (!m_enabled || m_last.seconds() < 0.2) return;
+    m_last = {};
+    done = std::clamp(done, 0.0, 1.0);
+    const int width = 30, filled = static_cast<int>(done * width);
+    const double elapsed = m_started.seconds();
+    const double eta = done > 0 ? elapsed * (1 - done) / done : 0;
+    std::fprintf(stderr, "\r[%s%s] %3.0f%% %s ETA %dm%02ds ", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+                 100 * done, text.c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+    std::fflush(stderr);
+  }
+  ~ProgressBar() {
+    if (m_enabled) std::fprintf(stderr, "\n");
+  }
+
+private:
+  bool m_enabled;
+  Stopwatch m_started, m_last;
+};
+
+json guard_json(const relax::GuardCounters& g) {
+  return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
+          {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},
+          {"halvings", g.halvings},     {"held_points", g.held_points}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -287,6 +324,47 @@ int main(int argc, char** argv) {
   relax_cmd->add_option("--k-fold", relax_options.k_fold, "stiffness of the guard against stitches turning over (0: off)")->capture_default_str();
   relax_cmd->add_option("--max-move", relax_options.max_move, "largest move of a vertex in one step, × r_course")->capture_default_str();
   relax_cmd->add_option("--cg-iterations", relax_options.cg_iterations, "conjugate-gradient iterations per step, at most")->capture_default_str();
+
+  // skein relax-yarn
+  auto* ry = app.add_subcommand("relax-yarn", "relax yarn at yarn level without letting one yarn pass through another (Yuksel 2012 §6.3, Leaf 2018 §3)");
+  std::string ry_in, ry_out, ry_method = "fire", ry_resume, ry_report, ry_log, ry_png, ry_stitches;
+  relax::YarnRelaxOptions ry_options;
+  double ry_radius = 0, ry_take_up = 1;
+  bool ry_no_guard = false, ry_no_shape = false, ry_no_audit = false, ry_no_bounds = false;
+  std::string ry_checkpoint;
+  ry->add_option("INPUT", ry_in, ".skein project (its stitch faces drive shape preservation) or .bcc yarn")->required();
+  ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
+  ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast) or euler (Leaf Algorithm 1)")
+      ->check(CLI::IsMember({"fire", "euler"}))->capture_default_str();
+  ry->add_option("--checkpoint", ry_checkpoint, "checkpoint file, written atomically every --checkpoint-every steps or minutes");
+  ry->add_option("--checkpoint-every", ry_options.checkpoint_every, "steps between checkpoints (default 500 with --checkpoint)");
+  ry->add_option("--checkpoint-minutes", ry_options.checkpoint_minutes, "minutes between checkpoints");
+  ry->add_option("--resume", ry_resume, "continue from this checkpoint (same input and method)");
+  ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
+  ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points");
+  ry->add_option("--png", ry_png, "picture of the relaxed yarn");
+  ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
+  ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
+  ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
+  ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
+  ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
+  ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
+  ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
+  ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
+  ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
+  ry->add_option("--k-length", ry_options.params.k_length, "length penalty stiffness (Leaf eq. 1)")->capture_default_str();
+  ry->add_option("--k-contact", ry_options.params.k_contact, "contact stiffness (Leaf eq. 9)")->capture_default_str();
+  ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
+  ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");
+  ry->add_flag("--no-shape", ry_no_shape, "no boundary constraints or patch-tracking forces");
+  ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
+
+  // skein audit
+  auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
+  std::string audit_before, audit_after;
+  audit->add_option("BEFORE", audit_before, "yarn before (.bcc)")->required();
+  audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
 
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
@@ -519,6 +597,105 @@ int main(int argc, char** argv) {
       }
       if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
       return 0;
+    }
+    if (*ry) {
+      for (const auto& p : {ry_out, ry_report, ry_log, ry_png, ry_checkpoint})
+        if (!p.empty()) check_writable(p);
+      ry_options.method = relax::parse_yarn_method(ry_method);
+      ry_options.guard.enabled = !ry_no_guard;
+      ry_options.guard.safe_bounds = !ry_no_bounds;
+      ry_options.audit = !ry_no_audit;
+      ry_options.checkpoint = ry_checkpoint;
+      if (!ry_checkpoint.empty() && ry_options.checkpoint_every == 0 && ry_options.checkpoint_minutes == 0) ry_options.checkpoint_every = 500;
+      ry_options.validate();
+      Stopwatch t;
+      mesh::YarnCurves yarn;
+      relax::ShapeTargets targets;
+      if (is_bcc(ry_in)) {
+        yarn = relax::read_bcc(ry_in);
+        if (!ry_no_shape) spdlog::info("{} is bare yarn: no stitch faces, so no shape preservation", ry_in);
+      } else {
+        const auto project = mesh::read_project(ry_in);
+        if (!project.stitch) throw Error(ry_in, "", "holds no stitch mesh; run 'skein stitch' first");
+        yarn = yarn_of(ry_in, ry_radius, ry_stitches);
+        if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
+      }
+      const auto system = relax::make_yarn_system(yarn, ry_take_up);
+      spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
+                   system.num_curves(), system.num_points(), system.num_segments(), system.radius, system.contact_samples,
+                   targets.boundary_loops.size(), targets.patches.size(), t.seconds());
+      auto state = relax::initial_state(system, ry_options);
+      if (!ry_resume.empty()) {
+        state = relax::read_checkpoint(ry_resume, relax::checkpoint_fingerprint(system, ry_options.method), system.num_points());
+        spdlog::info("resuming {} at step {}", ry_resume, state.step);
+      }
+      std::unique_ptr<std::ofstream> log;
+      if (!ry_log.empty()) {
+        log = std::make_unique<std::ofstream>(ry_log);
+        *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points\n";
+      }
+      ProgressBar bar(isatty(fileno(stderr)) && !quiet);
+      auto relaxer = relax::make_cpu_yarn_relaxer(system, targets, ry_options);
+      spdlog::info("relaxing on the CPU with {} ({} threads)", ry_method, Eigen::nbThreads());
+      const double log_tol = std::log(std::max(ry_options.tolerance, 1e-12));
+      const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
+        if (log)
+          *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
+               << s.guard_hits << ',' << s.held_points << '\n';
+        const double by_steps = static_cast<double>(s.step) / std::max<long>(ry_options.max_steps, 1);
+        const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
+        char text[160];
+        std::snprintf(text, sizeof text, "step %ld residual %.3g move %.3g mm contacts %ld", s.step, s.residual, s.moved, s.contacts);
+        bar.show(std::max(by_steps, by_residual), text);
+        if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
+      });
+      const auto yarn_out_curves = relax::with_points(yarn, state.points);
+      write_yarn(yarn_out_curves, ry_out);
+      spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
+                   report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
+                   report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), ry_out);
+      if (!ry_report.empty())
+        write_json({{"input", ry_in}, {"method", ry_method}, {"backend", report.backend}, {"threads", Eigen::nbThreads()},
+                    {"control_points", system.num_points()}, {"segments", system.num_segments()},
+                    {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
+                    {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
+                    {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
+                    {"guard_events", guard_json(report.guard)},
+                    {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
+                    {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
+                    {"yarn", yarn_json(yarn_out_curves)}},
+                   ry_report);
+      if (!ry_png.empty()) render_yarn_tubes(yarn_out_curves, ry_png, render::YarnColor::StitchType, "flat");
+      return report.stopped_by == "diverged" ? 1 : 0;
+    }
+    if (*audit) {
+      const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);
+      if (before.curve_start != after.curve_start || before.closed != after.closed)
+        throw Error(audit_after, "", "holds other curves than " + audit_before + " (curve count, point counts or closed flags differ)");
+      const auto system = relax::make_yarn_system(before);
+      Eigen::Matrix3Xd q1(3, system.num_points());
+      for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
+      double largest = 0;
+      for (int p = 0; p < system.num_points(); ++p) largest = std::max(largest, (q1.col(p) - system.points.col(p)).norm());
+      const long crossings = relax::TopologyAuditor(system).crossings(system.points, q1);
+      const auto links_before = relax::linking_numbers(before), links_after = relax::linking_numbers(after);
+      std::map<std::pair<int, int>, long> lk0, lk1;
+      for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
+      for (const auto& l : links_after) lk1[{l.a, l.b}] = l.number;
+      std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
+                << system.num_points() << "\nlargest control-point move: " << largest << " mm\n"
+                << "centreline crossings on the straight path between the two states: " << crossings << "\n";
+      long changed = 0;
+      std::set<std::pair<int, int>> keys;
+      for (const auto& [k, v] : lk0) keys.insert(k);
+      for (const auto& [k, v] : lk1) keys.insert(k);
+      for (const auto& k : keys) {
+        const long a = lk0.count(k) ? lk0[k] : 0, b = lk1.count(k) ? lk1[k] : 0;
+        if (a == b) continue;
+        if (++changed <= 20) std::cout << "linking number of closed curves " << k.first << " and " << k.second << ": " << a << " -> " << b << "\n";
+      }
+      std::cout << "linking numbers changed: " << changed << " (of " << keys.size() << " pairs of closed curves that come near)\n";
+      return crossings == 0 && changed == 0 ? 0 : 1;
     }
     if (*devices) {
       const auto q = cuda::query_devices();

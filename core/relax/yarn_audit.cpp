@@ -1,0 +1,247 @@
+#include "relax/yarn_audit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <Eigen/Geometry>
+
+namespace skein::relax {
+namespace {
+
+using Eigen::Vector3d;
+
+/// Closest distance between the segments p0-p1 and q0-q1 (clamped closest points, Ericson 2005 §5.1.9).
+double segment_distance(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0, const Vector3d& q1) {
+  const Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a <= 1e-300 && e <= 1e-300) return r.norm();
+  if (a <= 1e-300) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 1e-300) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return (p0 + s * d1 - (q0 + t * d2)).norm();
+}
+
+}  // namespace
+
+bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3d b0[2], const Vector3d b1[2], double tolerance) {
+  const auto at = [&](double t, Vector3d out[4]) {
+    out[0] = a0[0] + t * (a1[0] - a0[0]);
+    out[1] = a0[1] + t * (a1[1] - a0[1]);
+    out[2] = b0[0] + t * (b1[0] - b0[0]);
+    out[3] = b0[1] + t * (b1[1] - b0[1]);
+  };
+  const auto distance_at = [&](double t) {
+    Vector3d p[4];
+    at(t, p);
+    return segment_distance(p[0], p[1], p[2], p[3]);
+  };
+  // Two moving edges can only meet when their four ends are coplanar: V(t) = e1 . (e2 x e3) = 0, a cubic.
+  const Vector3d u1 = a0[1] - a0[0], u2 = b0[0] - a0[0], u3 = b0[1] - a0[0];
+  const Vector3d w1 = (a1[1] - a1[0]) - u1, w2 = (b1[0] - a1[0]) - u2, w3 = (b1[1] - a1[0]) - u3;
+  const double c0 = u1.dot(u2.cross(u3));
+  const double c1 = w1.dot(u2.cross(u3)) + u1.dot(u2.cross(w3) + w2.cross(u3));
+  const double c2 = w1.dot(u2.cross(w3) + w2.cross(u3)) + u1.dot(w2.cross(w3));
+  const double c3 = w1.dot(w2.cross(w3));
+  const auto volume = [&](double t) { return ((c3 * t + c2) * t + c1) * t + c0; };
+  // Monotone pieces of [0, 1] between the cubic's turning points; a root in each is found by bisection.
+  std::array<double, 4> cuts{0, 1, 1, 1};
+  int count = 1;
+  const double qa = 3 * c3, qb = 2 * c2, qc = c1;
+  if (std::abs(qa) > 1e-300) {
+    const double disc = qb * qb - 4 * qa * qc;
+    if (disc >= 0) {
+      const double sq = std::sqrt(disc);
+      for (double t : {(-qb - sq) / (2 * qa), (-qb + sq) / (2 * qa)})
+        if (t > 0 && t < 1) cuts[count++] = t;
+    }
+  } else if (std::abs(qb) > 1e-300) {
+    const double t = -qc / qb;
+    if (t > 0 && t < 1) cuts[count++] = t;
+  }
+  cuts[count++] = 1;
+  std::sort(cuts.begin(), cuts.begin() + count);
+  const double scale = std::max({std::abs(c0), std::abs(c1), std::abs(c2), std::abs(c3)});
+  if (scale <= 1e-300) {  // coplanar throughout the move: look along it
+    for (int i = 0; i <= 64; ++i)
+      if (distance_at(i / 64.0) <= tolerance) return true;
+    return false;
+  }
+  for (int i = 0; i + 1 < count; ++i) {
+    double lo = cuts[i], hi = cuts[i + 1];
+    double vlo = volume(lo), vhi = volume(hi);
+    if (distance_at(lo) <= tolerance || distance_at(hi) <= tolerance) return true;
+    if ((vlo > 0) == (vhi > 0)) continue;
+    for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
+      const double mid = 0.5 * (lo + hi), vm = volume(mid);
+      if ((vm > 0) == (vlo > 0)) {
+        lo = mid;
+        vlo = vm;
+      } else {
+        hi = mid;
+      }
+    }
+    if (distance_at(0.5 * (lo + hi)) <= tolerance) return true;
+  }
+  return false;
+}
+
+TopologyAuditor::TopologyAuditor(const YarnSystem& system, int samples) : m_system(system), m_samples(samples) {}
+
+Eigen::Matrix3Xd TopologyAuditor::polyline_points(const Eigen::Matrix3Xd& points) const {
+  const int per = m_samples + 1;
+  Eigen::Matrix3Xd out(3, static_cast<long>(m_system.num_segments()) * per);
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < m_system.num_segments(); ++s) {
+    const auto& sp = m_system.segment_points[s];
+    for (int k = 0; k < per; ++k) {
+      // Catmull-Rom basis, written out here so that the auditor shares nothing with the relaxer.
+      const double t = static_cast<double>(k) / m_samples, t2 = t * t, t3 = t2 * t;
+      out.col(static_cast<long>(s) * per + k) =
+          0.5 * ((-t3 + 2 * t2 - t) * points.col(sp[0]) + (3 * t3 - 5 * t2 + 2) * points.col(sp[1]) +
+                 (-3 * t3 + 4 * t2 + t) * points.col(sp[2]) + (t3 - t2) * points.col(sp[3]));
+    }
+  }
+  return out;
+}
+
+long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
+  const Eigen::Matrix3Xd p0 = polyline_points(before), p1 = polyline_points(after);
+  const int per = m_samples + 1;
+  const long edges = static_cast<long>(m_system.num_segments()) * m_samples;
+  const auto ends = [&](long e) {
+    const long s = e / m_samples, k = e % m_samples;
+    return std::array<long, 2>{s * per + k, s * per + k + 1};
+  };
+  // Swept boxes of the edges, bucketed in a grid whose cells are as wide as the widest box.
+  std::vector<Eigen::AlignedBox3d> boxes(edges);
+  double widest = 0;
+#pragma omp parallel for schedule(static) reduction(max : widest)
+  for (long e = 0; e < edges; ++e) {
+    const auto [i, j] = ends(e);
+    Eigen::AlignedBox3d box(p0.col(i));
+    box.extend(Vector3d(p0.col(j))).extend(Vector3d(p1.col(i))).extend(Vector3d(p1.col(j)));
+    boxes[e] = box;
+    widest = std::max(widest, box.sizes().maxCoeff());
+  }
+  const double cell = std::max(widest, 1e-9);
+  const auto key_of = [&](const Vector3d& c, int dx, int dy, int dz) {
+    const auto part = [](double v, int d) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v)) + d + (1 << 20)) & 0x1fffff; };
+    return (part(c.x() / cell, dx) << 42) | (part(c.y() / cell, dy) << 21) | part(c.z() / cell, dz);
+  };
+  std::vector<std::pair<std::uint64_t, long>> sorted(edges);
+  for (long e = 0; e < edges; ++e) sorted[e] = {key_of(boxes[e].center(), 0, 0, 0), e};
+  std::sort(sorted.begin(), sorted.end());
+  const auto neighbours = [&](long s, long t) {
+    if (s == t) return true;
+    const int cs = m_system.segment_curve[s];
+    if (cs != m_system.segment_curve[t]) return false;
+    const long gap = std::abs(s - t);
+    if (gap == 1) return true;
+    // Closed curves: the last segment meets the first.
+    const long n = m_system.closed[cs] ? m_system.curve_start[cs + 1] - m_system.curve_start[cs] : -1;
+    return n > 0 && gap == n - 1;
+  };
+  const double tolerance = 1e-9 * m_system.radius;
+  long found = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : found)
+  for (long e = 0; e < edges; ++e) {
+    const Vector3d c = boxes[e].center();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto key = key_of(c, dx, dy, dz);
+          for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1L)); it != sorted.end() && it->first == key; ++it) {
+            const long f = it->second;
+            if (f <= e || neighbours(e / m_samples, f / m_samples) || !boxes[e].intersects(boxes[f])) continue;
+            const auto [ei, ej] = ends(e);
+            const auto [fi, fj] = ends(f);
+            const Vector3d a0[2] = {p0.col(ei), p0.col(ej)}, a1[2] = {p1.col(ei), p1.col(ej)};
+            const Vector3d b0[2] = {p0.col(fi), p0.col(fj)}, b1[2] = {p1.col(fi), p1.col(fj)};
+            if (edges_meet_during(a0, a1, b0, b1, tolerance)) ++found;
+          }
+        }
+  }
+  return found;
+}
+
+double linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
+  constexpr double kPi = 3.14159265358979323846;
+  double total = 0;
+  const size_t na = a.size(), nb = b.size();
+  for (size_t i = 0; i < na; ++i) {
+    const Vector3d& a0 = a[i];
+    const Vector3d& a1 = a[(i + 1) % na];
+    for (size_t j = 0; j < nb; ++j) {
+      const Vector3d& b0 = b[j];
+      const Vector3d& b1 = b[(j + 1) % nb];
+      // Klenin & Langowski 2000: the solid angle the edge pair subtends, from the four corner normals.
+      const Vector3d r13 = b0 - a0, r14 = b1 - a0, r23 = b0 - a1, r24 = b1 - a1;
+      Vector3d n[4] = {r13.cross(r14), r14.cross(r24), r24.cross(r23), r23.cross(r13)};
+      bool degenerate = false;
+      for (auto& v : n) {
+        const double len = v.norm();
+        if (len <= 1e-300) degenerate = true;
+        else v /= len;
+      }
+      if (degenerate) continue;
+      double omega = 0;
+      for (int k = 0; k < 4; ++k) omega += std::asin(std::clamp(n[k].dot(n[(k + 1) % 4]), -1.0, 1.0));
+      const double side = ((b1 - b0).cross(a1 - a0)).dot(r13);
+      total += (side > 0 ? omega : side < 0 ? -omega : 0.0);
+    }
+  }
+  return total / (4 * kPi);
+}
+
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, int samples) {
+  std::vector<int> closed;
+  for (int c = 0; c < yarn.curves(); ++c)
+    if (yarn.closed[c] && yarn.curve_size(c) > 2) closed.push_back(c);
+  // Closed curves as polylines through the Catmull-Rom samples.
+  std::vector<std::vector<Vector3d>> lines(closed.size());
+  std::vector<Eigen::AlignedBox3d> boxes(closed.size());
+  for (size_t i = 0; i < closed.size(); ++i) {
+    const int c = closed[i], begin = yarn.curve_start[c], n = yarn.curve_size(c);
+    const auto point = [&](int k) { return yarn.points[begin + ((k % n) + n) % n]; };
+    for (int k = 0; k < n; ++k)
+      for (int m = 0; m < samples; ++m) {
+        const double t = static_cast<double>(m) / samples, t2 = t * t, t3 = t2 * t;
+        const Vector3d p = 0.5 * ((-t3 + 2 * t2 - t) * point(k - 1) + (3 * t3 - 5 * t2 + 2) * point(k) +
+                                  (-3 * t3 + 4 * t2 + t) * point(k + 1) + (t3 - t2) * point(k + 2));
+        lines[i].push_back(p);
+        boxes[i].extend(p);
+      }
+  }
+  std::vector<std::pair<int, int>> candidates;
+  for (size_t i = 0; i < closed.size(); ++i)
+    for (size_t j = i + 1; j < closed.size(); ++j)
+      if (boxes[i].intersects(boxes[j])) candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  std::vector<Linking> out(candidates.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long k = 0; k < static_cast<long>(candidates.size()); ++k) {
+    const auto [i, j] = candidates[k];
+    out[k] = {closed[i], closed[j], std::lround(linking_number(lines[i], lines[j]))};
+  }
+  return out;
+}
+
+}  // namespace skein::relax

@@ -1,0 +1,44 @@
+#pragma once
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "relax/yarn_system.hpp"
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::relax {
+
+/// The topology auditor, independent of the pull-through guard (it shares no code with it): the yarn
+/// centrelines as polylines through `samples` points per spline segment, and a continuous test of every
+/// pair of polyline edges while all control points move on straight lines from one state to the next.
+class TopologyAuditor {
+public:
+  explicit TopologyAuditor(const YarnSystem& system, int samples = 4);
+  /// Centreline crossings during the straight-line move from `before` to `after`: edges of different
+  /// segments that meet (edges of one segment or of neighbouring segments are not compared).
+  long crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
+
+private:
+  Eigen::Matrix3Xd polyline_points(const Eigen::Matrix3Xd& points) const;
+  const YarnSystem& m_system;
+  int m_samples;
+};
+
+/// Does the edge a0-a1 meet the edge b0-b1 at some time while all four ends move linearly from their *0
+/// positions (t = 0) to their *1 positions (t = 1)? Edges closer than `tolerance` count as meeting.
+bool edges_meet_during(const Eigen::Vector3d a0[2], const Eigen::Vector3d a1[2], const Eigen::Vector3d b0[2],
+                       const Eigen::Vector3d b1[2], double tolerance);
+
+/// Gauss linking number of two closed polylines (exact for polylines: the solid angle of each pair of edges,
+/// Klenin & Langowski 2000); an integer up to rounding when the curves do not meet.
+double linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
+
+/// Linking numbers between every two closed curves of `yarn` whose bounding boxes overlap (curves with
+/// apart boxes have linking number 0), each curve sampled `samples` times per segment.
+struct Linking {
+  int a = 0, b = 0;
+  long number = 0;
+};
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, int samples = 4);
+
+}  // namespace skein::relax

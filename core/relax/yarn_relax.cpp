@@ -1,0 +1,346 @@
+#include "relax/yarn_relax.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "common/error.hpp"
+#include "relax/yarn_audit.hpp"
+#include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_model.hpp"
+
+namespace skein::relax {
+namespace {
+
+using V = model::Vec3<double>;
+V vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d eig(const V& v) { return {v.x, v.y, v.z}; }
+
+/// A sum that does not depend on the number of threads: fixed chunks, added in order.
+template <class F>
+double ordered_sum(long n, F term) {
+  constexpr long kChunks = 64;
+  double part[kChunks] = {};
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < kChunks; ++c)
+    for (long i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i) part[c] += term(i);
+  double total = 0;
+  for (double p : part) total += p;
+  return total;
+}
+
+void check_param(double v, const char* name, bool allow_zero = true) {
+  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
+    throw Error("", "yarn model", std::string(name) + " must be " + (allow_zero ? "finite and not negative" : "positive") + ", found " + std::to_string(v));
+}
+
+}  // namespace
+
+void YarnParams::validate() const {
+  check_param(k_bend, "k_bend");
+  check_param(k_stretch, "k_stretch");
+  check_param(k_length, "k_length");
+  check_param(k_contact, "k_contact", false);
+  check_param(k_dt, "k_dt");
+  check_param(k_dn, "k_dn");
+  check_param(k_global, "k_global");
+  check_param(density, "density", false);
+  if (!(contact_soft > 0 && contact_soft < 1)) throw Error("", "yarn model", "contact_soft must be in (0, 1), found " + std::to_string(contact_soft));
+}
+
+void YarnRelaxOptions::validate() const {
+  params.validate();
+  guard.validate();
+  shape.validate();
+  check_param(contact_margin, "contact_margin", false);
+  check_param(time_step, "time_step", false);
+  check_param(fire_max_step, "fire_max_step", false);
+  check_param(tolerance, "tolerance");
+  check_param(stall, "stall");
+  check_param(max_seconds, "max_seconds");
+  check_param(checkpoint_minutes, "checkpoint_minutes");
+  if (max_steps < 0) throw Error("", "yarn relaxation", "the step cap must not be negative");
+  if (checkpoint_every < 0) throw Error("", "yarn relaxation", "the checkpoint interval must not be negative");
+  if ((checkpoint_every > 0 || checkpoint_minutes > 0) && checkpoint.empty())
+    throw Error("", "yarn relaxation", "a checkpoint interval needs a checkpoint file");
+}
+
+YarnMethod parse_yarn_method(const std::string& name) {
+  if (name == "euler") return YarnMethod::Euler;
+  if (name == "fire") return YarnMethod::Fire;
+  throw Error("", "--method", "expected euler or fire, found '" + name + "'");
+}
+
+std::string to_string(YarnMethod method) { return method == YarnMethod::Euler ? "euler" : "fire"; }
+
+double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
+                   Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities, Eigen::Matrix3Xd* damping) {
+  const int segments = system.num_segments();
+  const model::IntrinsicParams<double> intrinsic{params.k_bend, params.k_stretch, params.k_length};
+  const model::ContactParams<double> contact{params.k_contact, velocities ? params.k_dt : 0.0, velocities ? params.k_dn : 0.0, system.radius,
+                                             params.contact_soft};
+  // Per segment: the gradient on its four control points (and the contact damping force), gathered per
+  // point afterwards (Leaf §3.2 stencils): no two threads write the same place.
+  std::vector<std::array<V, 4>> seg_grad(segments), seg_damp(segments);
+  std::vector<double> seg_energy(segments);
+  const V zero{0, 0, 0};
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int s = 0; s < segments; ++s) {
+    V p[4], u[4] = {zero, zero, zero, zero}, g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
+    for (int k = 0; k < 4; ++k) {
+      p[k] = vec(points.col(system.segment_points[s][k]));
+      if (velocities) u[k] = vec(velocities->col(system.segment_points[s][k]));
+    }
+    double e = model::segment_intrinsic(p, system.rest_length[s], intrinsic, g);
+    for (int i = pairs.start[s]; i < pairs.start[s + 1]; ++i) {
+      const int t = pairs.partner[i];
+      V q[4], w[4] = {zero, zero, zero, zero};
+      for (int k = 0; k < 4; ++k) {
+        q[k] = vec(points.col(system.segment_points[t][k]));
+        if (velocities) w[k] = vec(velocities->col(system.segment_points[t][k]));
+      }
+      // Each pair is seen from both sides; half its energy on each.
+      e += 0.5 * model::segment_contact(p, q, u, w, system.rest_length[s], system.rest_length[t], system.contact_samples, contact, g, d);
+    }
+    seg_energy[s] = e;
+    for (int k = 0; k < 4; ++k) {
+      seg_grad[s][k] = g[k];
+      seg_damp[s][k] = d[k];
+    }
+  }
+  gradient.setZero(3, points.cols());
+  if (damping) damping->setZero(3, points.cols());
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < system.num_points(); ++p) {
+    V g = zero, d = zero;
+    for (int i = system.point_segments_start[p]; i < system.point_segments_start[p + 1]; ++i) {
+      const int code = system.point_segments[i];
+      g += seg_grad[code >> 2][code & 3];
+      d += seg_damp[code >> 2][code & 3];
+    }
+    gradient.col(p) = eig(g);
+    if (damping) damping->col(p) = eig(d) - params.k_global * system.mass[p] * params.density * velocities->col(p);  // eq. 11, lumped
+  }
+  return ordered_sum(segments, [&](long s) { return seg_energy[s]; });
+}
+
+YarnState initial_state(const YarnSystem& system, const YarnRelaxOptions& options) {
+  YarnState state;
+  state.points = system.points;
+  state.velocities.setZero(3, system.num_points());
+  state.time_step = options.time_step;
+  state.fire_alpha = 0.1;
+  return state;
+}
+
+namespace {
+
+class CpuYarnRelaxer final : public YarnRelaxer {
+public:
+  CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
+      : m_system(system), m_targets(targets), m_options(options), m_auditor(system) {
+    m_options.validate();
+    std::vector<int> groups(system.num_points(), -1);
+    for (int l = 0; l < static_cast<int>(targets.boundary_loops.size()); ++l)
+      for (int p : targets.boundary_loops[l]) groups[p] = l;
+    m_guard.emplace(system, m_options.guard, std::move(groups));
+    m_inv_mass.resize(system.num_points());
+    for (int p = 0; p < system.num_points(); ++p) m_inv_mass[p] = 1.0 / (system.mass[p] * m_options.params.density);
+  }
+
+  YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step) override {
+    const auto started = std::chrono::steady_clock::now();
+    auto last_checkpoint = started;
+    const auto seconds_since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
+    const double r = m_system.radius, limit = m_options.guard.max_move * r;
+    const auto fingerprint = checkpoint_fingerprint(m_system, m_options.method);
+    m_guard->set_counters(state.guard);
+    refresh_contacts(state);
+
+    YarnRelaxReport report;
+    Eigen::Matrix3Xd grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
+    double energy = 0, residual = 0;
+    long failures = 0;
+    for (;;) {
+      energy = forces(state, grad, damping);
+      residual = std::sqrt(ordered_sum(grad.cols(), [&](long p) { return grad.col(p).squaredNorm(); }));
+      if (!std::isfinite(energy) || !std::isfinite(residual) || !state.points.allFinite()) {
+        // Blow-up: back to the last good state with half the step (Leaf §3.1's step restriction failed).
+        state.points = good_points;
+        state.velocities = good_velocities;
+        state.time_step *= 0.5;
+        ++state.rollbacks;
+        spdlog::warn("step {}: the yarn state is not finite; back to the last good state, step {:.3g} s", state.step, state.time_step);
+        if (++failures > 20) {
+          report.stopped_by = "diverged";
+          break;
+        }
+        refresh_contacts(state);
+        continue;
+      }
+      failures = 0;
+      good_points = state.points;
+      good_velocities = state.velocities;
+      if (state.step == 0 || state.residual0 == 0) state.residual0 = residual;
+      const double relative = residual / state.residual0;
+      // Leaf eq. 5: small against the start, and no longer changing.
+      const bool converged = state.step > 0 && relative <= m_options.tolerance &&
+                             std::abs(residual / std::max(state.residual_prev, 1e-300) - 1) <= m_options.stall;
+      state.residual_prev = residual;
+      if (converged) {
+        report.converged = true;
+        report.stopped_by = "converged";
+        break;
+      }
+      if (state.step >= m_options.max_steps) {
+        report.stopped_by = "step cap";
+        break;
+      }
+      if (m_options.max_seconds > 0 && seconds_since(started) >= m_options.max_seconds) {
+        report.stopped_by = "time cap";
+        break;
+      }
+
+      const GuardCounters before = m_guard->counters();
+      const double dt = propose(state, grad, damping, limit, delta);
+      if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
+      const double scale = m_guard->accept(state.points, delta);
+      if (m_options.audit) state.pull_through_events += m_auditor.crossings(state.points, state.points + delta);
+      state.points += delta;
+      // The velocity that matches the move the guard let through.
+      if (scale < 1) state.velocities = delta / dt;
+      ++state.step;
+      const double moved = largest_sample_move(m_system, delta);
+      m_moved_since_rebuild += moved;
+      if (m_moved_since_rebuild >= 0.5 * m_options.contact_margin * r) refresh_contacts(state);
+      state.guard = m_guard->counters();
+
+      if (on_step) {
+        YarnStepLog log;
+        log.step = state.step;
+        log.energy = energy;
+        log.residual = relative;
+        log.time_step = dt * scale;
+        log.moved = moved;
+        log.contacts = m_pairs.pairs();
+        log.guard_hits = state.guard.finest_hits - before.finest_hits;
+        log.held_points = state.guard.held_points - before.held_points;
+        on_step(log);
+      }
+      const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;
+      const bool by_time = m_options.checkpoint_minutes > 0 && seconds_since(last_checkpoint) >= 60 * m_options.checkpoint_minutes;
+      if (by_steps || by_time) {
+        write_checkpoint(m_options.checkpoint, fingerprint, state);
+        last_checkpoint = std::chrono::steady_clock::now();
+        // A resumed run starts with fresh contacts and safe bounds; so does this one, so both go on alike.
+        refresh_contacts(state);
+      }
+    }
+    report.steps = state.step;
+    report.wall_seconds = seconds_since(started);
+    report.residual = state.residual0 > 0 ? residual / state.residual0 : 0;
+    report.energy = energy;
+    report.contacts = m_pairs.pairs();
+    report.guard = m_guard->counters();
+    report.pull_through_events = m_options.audit ? state.pull_through_events : -1;
+    report.rollbacks = state.rollbacks;
+    report.contact_rebuilds = state.contact_rebuilds;
+    return report;
+  }
+
+private:
+  void refresh_contacts(YarnState& state) {
+    m_pairs = find_contact_pairs(m_system, state.points, m_options.contact_margin * m_system.radius);
+    ++state.contact_rebuilds;
+    m_guard->reset(m_pairs);
+    m_moved_since_rebuild = 0;
+  }
+
+  /// Energy and its gradient (yarn model and patch tracking) and the damping forces at `state`.
+  double forces(const YarnState& state, Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& damping) {
+    double energy = yarn_energy(m_system, m_options.params, m_pairs, state.points, grad, &state.velocities, &damping);
+    if (!m_targets.patches.empty()) energy += patch_energy(m_targets, m_options.shape, m_system.radius, state.points, grad);
+    return energy;
+  }
+
+  /// The integrator's proposed move into `delta`; returns the time step it used.
+  double propose(YarnState& state, const Eigen::Matrix3Xd& grad, const Eigen::Matrix3Xd& damping, double limit, Eigen::Matrix3Xd& delta) {
+    const int n = m_system.num_points();
+    // Euler damps with eqs. 11-12; FIRE steers its own velocities and takes no damping.
+    const bool damped = m_options.method == YarnMethod::Euler;
+    Eigen::Matrix3Xd accel(3, n);
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p) accel.col(p) = ((damped ? Eigen::Vector3d(damping.col(p)) : Eigen::Vector3d::Zero()) - grad.col(p)) * m_inv_mass[p];
+    if (m_options.method == YarnMethod::Euler) {
+      // Leaf eq. 2: the largest step after which no contact sample moves more than ε r.
+      double dt = state.time_step;
+      const int ns = m_system.contact_samples;
+#pragma omp parallel for schedule(static) reduction(min : dt)
+      for (int s = 0; s < m_system.num_segments(); ++s)
+        for (int i = 0; i < ns; ++i) {
+          double w[4];
+          model::basis(static_cast<double>(i) / (ns - 1), w);
+          Eigen::Vector3d u = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();
+          for (int k = 0; k < 4; ++k) {
+            u += w[k] * state.velocities.col(m_system.segment_points[s][k]);
+            a += w[k] * accel.col(m_system.segment_points[s][k]);
+          }
+          dt = std::min(dt, model::step_bound(u.norm(), a.norm(), limit));
+        }
+      state.velocities += dt * accel;
+      delta = dt * state.velocities;
+      return dt;
+    }
+    // FIRE (Bitzek et al. 2006) on the forces, semi-implicit.
+    const Eigen::Matrix3Xd force = -grad;
+    const double power = ordered_sum(n, [&](long p) { return force.col(p).dot(state.velocities.col(p)); });
+    if (power > 0) {
+      const double vnorm = std::sqrt(ordered_sum(n, [&](long p) { return state.velocities.col(p).squaredNorm(); }));
+      const double fnorm = std::sqrt(ordered_sum(n, [&](long p) { return force.col(p).squaredNorm(); }));
+      if (fnorm > 0) state.velocities = (1 - state.fire_alpha) * state.velocities + state.fire_alpha * vnorm / fnorm * force;
+      if (++state.fire_positive > 5) {
+        state.time_step = std::min(state.time_step * 1.1, m_options.fire_max_step);
+        state.fire_alpha *= 0.99;
+      }
+    } else {
+      state.velocities.setZero();
+      state.time_step *= 0.5;
+      state.fire_alpha = 0.1;
+      state.fire_positive = 0;
+    }
+    const double dt = state.time_step;
+    state.velocities += dt * accel;
+    delta = dt * state.velocities;
+    // Every point at most ε r / 1.25, so no sample moves more than ε r (Catmull-Rom: sum |b| <= 1.25).
+    const double clamp = limit / 1.25;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p) {
+      const double m = delta.col(p).norm();
+      if (m > clamp) {
+        delta.col(p) *= clamp / m;
+        state.velocities.col(p) = delta.col(p) / dt;
+      }
+    }
+    return dt;
+  }
+
+  const YarnSystem& m_system;
+  const ShapeTargets& m_targets;
+  YarnRelaxOptions m_options;
+  TopologyAuditor m_auditor;
+  std::optional<PullThroughGuard> m_guard;
+  Eigen::VectorXd m_inv_mass;
+  ContactPairs m_pairs;
+  double m_moved_since_rebuild = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<YarnRelaxer> make_cpu_yarn_relaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options) {
+  return std::make_unique<CpuYarnRelaxer>(system, targets, options);
+}
+
+}  // namespace skein::relax

@@ -1,0 +1,107 @@
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "relax/pull_through_guard.hpp"
+#include "relax/yarn_contacts.hpp"
+#include "relax/yarn_shape.hpp"
+#include "relax/yarn_system.hpp"
+
+namespace skein::relax {
+
+/// Stiffnesses and damping of the yarn model (Leaf 2018 §3.1 and Appendix B; units mm, g, s). Only their
+/// ratios shape the relaxed yarn; the defaults suit the bundled stitch library at r = 0.6 mm.
+struct YarnParams {
+  double k_bend = 0.1;      ///< eq. 7
+  double k_stretch = 20;    ///< eq. 8
+  double k_length = 200;    ///< eq. 1
+  double k_contact = 50;    ///< eq. 9
+  double contact_soft = 0.5;  ///< distance / 2r below which the contact kernel continues linearly
+  double k_dt = 0.05;       ///< eq. 12, tangential contact damping
+  double k_dn = 0.2;        ///< eq. 12, normal contact damping
+  double k_global = 2;      ///< eq. 11, mass-proportional damping [1/s]
+  double density = 1;       ///< mass per rest length [g/mm]
+  void validate() const;
+};
+
+/// The energy of the yarn at `points` (intrinsic terms of every segment and contact between the given
+/// pairs) with its gradient; with `velocities`, also the damping forces (eqs. 11–12) into `damping`.
+double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
+                   Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities = nullptr, Eigen::Matrix3Xd* damping = nullptr);
+
+enum class YarnMethod {
+  Euler,  ///< semi-implicit Euler with the per-sample step bound of Leaf eq. 2 (Leaf Algorithm 1)
+  Fire,   ///< FIRE (Bitzek et al. 2006), a quasi-static descent with inertia; every point clamped to ε r
+};
+YarnMethod parse_yarn_method(const std::string& name);  ///< "euler" or "fire"; throws skein::Error otherwise
+std::string to_string(YarnMethod method);
+
+struct YarnRelaxOptions {
+  YarnMethod method = YarnMethod::Fire;
+  YarnParams params;
+  GuardOptions guard;
+  ShapeOptions shape;
+  double contact_margin = 1.0;  ///< [r]: pairs this far beyond touching are cached; rebuilt after half of it is used
+  double time_step = 0.02;      ///< [s] Euler's step and FIRE's first step
+  double fire_max_step = 0.2;   ///< [s] FIRE's largest step
+  double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
+  double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
+  long max_steps = 20000;
+  double max_seconds = 0;       ///< wall-time cap, 0 for none
+  bool audit = true;            ///< run the topology auditor on every step (pull_through_events)
+  std::filesystem::path checkpoint;  ///< written atomically every checkpoint_every steps / minutes
+  long checkpoint_every = 0;
+  double checkpoint_minutes = 0;
+  void validate() const;
+};
+
+/// Everything a run needs to go on: what a checkpoint holds.
+struct YarnState {
+  Eigen::Matrix3Xd points, velocities;  ///< [mm], [mm/s]
+  long step = 0;
+  double time_step = 0;       ///< the integrator's current step
+  double fire_alpha = 0;      ///< FIRE's mixing factor
+  long fire_positive = 0;     ///< FIRE's steps downhill in a row
+  double residual0 = 0, residual_prev = 0;  ///< |∇E| at the first and the previous step
+  GuardCounters guard;
+  long rollbacks = 0, contact_rebuilds = 0, pull_through_events = 0;
+};
+YarnState initial_state(const YarnSystem& system, const YarnRelaxOptions& options);
+
+struct YarnStepLog {
+  long step = 0;
+  double energy = 0, residual = 0;  ///< residual: |∇E| / |∇E_0|
+  double time_step = 0, moved = 0;  ///< moved: the largest distance a point of the yarn moved [mm]
+  long contacts = 0, guard_hits = 0, held_points = 0;
+};
+
+/// Outcome of a run; not converging is a result, not an exception.
+struct YarnRelaxReport {
+  bool converged = false;
+  std::string stopped_by;     ///< "converged", "step cap", "time cap", "diverged"
+  long steps = 0;
+  double wall_seconds = 0, residual = 0, energy = 0;
+  long contacts = 0;          ///< contact pairs at the end
+  GuardCounters guard;
+  long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run
+  long rollbacks = 0, contact_rebuilds = 0;
+  std::string backend = "cpu";
+};
+
+/// Relaxes yarn control points toward equilibrium (Yuksel 2012 §6.3, Leaf 2018 §3); never lets two yarns
+/// pass through each other. One interface for every backend.
+class YarnRelaxer {
+public:
+  virtual ~YarnRelaxer() = default;
+  /// Steps `state` until converged or capped; `on_step` sees every step's figures.
+  virtual YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step = {}) = 0;
+};
+
+/// The CPU relaxer (OpenMP), the reference for every other backend. `targets` may be empty (bare yarn).
+std::unique_ptr<YarnRelaxer> make_cpu_yarn_relaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options);
+
+}  // namespace skein::relax

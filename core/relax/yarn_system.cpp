@@ -1,0 +1,111 @@
+#include "relax/yarn_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/error.hpp"
+#include "relax/yarn_model.hpp"
+
+namespace skein::relax {
+
+double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& segment) {
+  // The same Simpson quadrature as the length penalty (Leaf eq. 1), so a fresh system starts at rest.
+  model::Vec3<double> p[4];
+  for (int k = 0; k < 4; ++k) p[k] = {points(0, segment[k]), points(1, segment[k]), points(2, segment[k])};
+  double length = 0;
+  for (int i = 0; i < model::kIntrinsicSamples; ++i) {
+    double w[4];
+    model::basis_d1(static_cast<double>(i) / (model::kIntrinsicSamples - 1), w);
+    length += model::simpson_weight<double>(i, model::kIntrinsicSamples) * model::norm(model::combine(w, p));
+  }
+  return length;
+}
+
+bool YarnSystem::adjacent(int a, int b) const {
+  if (a == b) return true;
+  const int c = segment_curve[a];
+  if (c != segment_curve[b]) return false;
+  if (a > b) std::swap(a, b);
+  const double between = arc_start[b] - (arc_start[a] + rest_length[a]);  // strictly between a and b
+  const double limit = 2 * radius;
+  if (between < limit) return true;
+  if (!closed[c]) return false;
+  const double around = curve_length[c] - (arc_start[b] + rest_length[b]) + arc_start[a];
+  return around < limit;
+}
+
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
+  if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
+  if (!(take_up > 0) || !std::isfinite(take_up)) throw Error("", "", "the yarn take-up must be positive, found " + std::to_string(take_up));
+  YarnSystem s;
+  s.radius = curves.radius;
+  s.closed = curves.closed;
+  s.curve_start = curves.curve_start;
+  const int n = static_cast<int>(curves.points.size());
+  s.points.resize(3, n);
+  for (int p = 0; p < n; ++p) s.points.col(p) = curves.points[p];
+  s.mass.assign(n, 0.0);
+  s.curve_length.assign(curves.curves(), 0.0);
+  double longest = 0;
+  for (int c = 0; c < curves.curves(); ++c) {
+    const int begin = curves.curve_start[c], size = curves.curve_size(c);
+    const bool closed = curves.closed[c] && size > 2;
+    const int segments = closed ? size : size - 1;
+    const auto at = [&](int k) {
+      if (closed) return begin + ((k % size) + size) % size;
+      return begin + std::clamp(k, 0, size - 1);
+    };
+    for (int k = 0; k < segments; ++k) {
+      s.segment_points.push_back({at(k - 1), at(k), at(k + 1), at(k + 2)});
+      s.segment_curve.push_back(c);
+      if (!((s.points.col(at(k + 1)) - s.points.col(at(k))).norm() > 0))
+        throw Error("", "curve " + std::to_string(c) + " points " + std::to_string(at(k)) + " and " + std::to_string(at(k + 1)),
+                    "two consecutive control points coincide");
+      s.rest_length.push_back(spline_length(s.points, s.segment_points.back()) * take_up);
+      s.arc_start.push_back(s.curve_length[c]);
+      s.curve_length[c] += s.rest_length.back();
+      s.mass[at(k)] += 0.5 * s.rest_length.back();
+      s.mass[at(k + 1)] += 0.5 * s.rest_length.back();
+      longest = std::max(longest, s.rest_length.back());
+    }
+  }
+  if (s.num_segments() == 0) throw Error("", "", "the yarn has no segment (every curve has fewer than two points)");
+  // Leaf 2018 §3.1: an odd number of contact samples, more than L / 2r per segment.
+  s.contact_samples = static_cast<int>(std::floor(longest / (2 * s.radius))) + 1;
+  if (s.contact_samples % 2 == 0) ++s.contact_samples;
+  s.contact_samples = std::max(3, s.contact_samples);
+  // Point -> segment stencil (Leaf §3.2): every segment whose four control points include the point.
+  std::vector<int> count(n + 1, 0);
+  for (const auto& sp : s.segment_points)
+    for (int slot = 0; slot < 4; ++slot) ++count[sp[slot] + 1];
+  for (int p = 0; p < n; ++p) count[p + 1] += count[p];
+  s.point_segments_start = count;
+  s.point_segments.resize(count[n]);
+  for (int seg = 0; seg < s.num_segments(); ++seg)
+    for (int slot = 0; slot < 4; ++slot) s.point_segments[count[s.segment_points[seg][slot]]++] = seg * 4 + slot;
+  for (int p = 0; p < n; ++p)
+    if (s.mass[p] <= 0) throw Error("", "point " + std::to_string(p), "a control point on no segment (a curve of one point)");
+  return s;
+}
+
+mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points) {
+  mesh::YarnCurves out = curves;
+  for (int p = 0; p < static_cast<int>(out.points.size()); ++p) out.points[p] = points.col(p);
+  return out;
+}
+
+double largest_sample_move(const YarnSystem& system, const Eigen::Matrix3Xd& delta) {
+  double largest = 0;
+#pragma omp parallel for reduction(max : largest) schedule(static)
+  for (int seg = 0; seg < system.num_segments(); ++seg) {
+    const auto& sp = system.segment_points[seg];
+    const Eigen::Vector3d d0 = delta.col(sp[0]), d1 = delta.col(sp[1]), d2 = delta.col(sp[2]), d3 = delta.col(sp[3]);
+    // Bezier control points of the Catmull-Rom segment of the displacements.
+    const double m = std::max({d1.norm(), d2.norm(), (d1 + (d2 - d0) / 6).norm(), (d2 - (d3 - d1) / 6).norm()});
+    largest = std::max(largest, m);
+  }
+  return largest;
+}
+
+}  // namespace skein::relax

@@ -1,0 +1,51 @@
+#pragma once
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::relax {
+
+/// The yarn as the relaxers see it: a structure of arrays over control points and spline segments.
+/// Segment i joins control points (p1, p2) = segment_points[i][1..2] with neighbours p0 and p3; an open
+/// yarn's end segments repeat their end point as the missing neighbour. Built once; topology never changes.
+struct YarnSystem {
+  Eigen::Matrix3Xd points;                       ///< [mm], column per control point
+  std::vector<int> curve_start{0};               ///< curve c holds points [curve_start[c], curve_start[c+1])
+  std::vector<char> closed;                      ///< per curve
+  std::vector<std::array<int, 4>> segment_points;  ///< per segment: p0 p1 p2 p3
+  std::vector<int> segment_curve;                ///< per segment
+  std::vector<double> rest_length;               ///< per segment [mm]
+  std::vector<double> arc_start;                 ///< per segment: rest arc length from its curve's start [mm]
+  std::vector<double> curve_length;              ///< per curve: rest length [mm]
+  std::vector<double> mass;                      ///< per point: half the rest length of its segments
+  std::vector<int> point_segments_start;         ///< CSR: point p touches segments point_segments[start[p] .. start[p+1])
+  std::vector<int> point_segments;               ///< with the slot (0..3) in the lowest two bits
+  double radius = 0;                             ///< yarn radius r [mm]
+  int contact_samples = 3;                       ///< sphere samples per segment: odd, more than max rest length / 2r
+
+  int num_points() const { return static_cast<int>(points.cols()); }
+  int num_segments() const { return static_cast<int>(segment_points.size()); }
+  int num_curves() const { return static_cast<int>(curve_start.size()) - 1; }
+  /// Segments too close along one yarn to be in contact: the same segment, or a rest arc of less than 2r
+  /// between them (Kaldor's |i - j| > 1 rule, in lengths, so short segments in tight bends do not repel).
+  bool adjacent(int a, int b) const;
+};
+
+/// Arc length of one Catmull-Rom segment (p0 p1 p2 p3) [mm].
+double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& segment);
+
+/// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`.
+/// Throws skein::Error when the yarn has no segment, a non-positive radius or coincident control points.
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0);
+
+/// Writes the system's control points back into a copy of `curves` (same structure).
+mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points);
+
+/// A bound on the largest distance any point of any yarn moves when the control points move by `delta`:
+/// the largest Bezier control point of each segment's displacement curve (the curve lies in their hull).
+double largest_sample_move(const YarnSystem& system, const Eigen::Matrix3Xd& delta);
+
+}  // namespace skein::relax
