@@ -53,7 +53,7 @@ bool spheres_meet(const SweptSphere& a, const SweptSphere& b, double& end_gap) {
 }  // namespace
 
 void GuardOptions::validate() const {
-  if (!(max_move > 0 && max_move <= 1)) throw Error("", "guard", "the movement limit ε must be in (0, 1], found " + std::to_string(max_move));
+  if (!(max_move > 0 && max_move <= 10)) throw Error("", "guard", "the movement limit ε must be in (0, 10], found " + std::to_string(max_move));
   if (max_depth < 0 || max_depth > 20) throw Error("", "guard", "the refinement depth must be in 0..20, found " + std::to_string(max_depth));
   if (max_halvings < 0 || max_halvings > 30) throw Error("", "guard", "the step halvings must be in 0..30, found " + std::to_string(max_halvings));
 }

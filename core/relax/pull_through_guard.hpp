@@ -10,7 +10,7 @@ namespace skein::relax {
 
 struct GuardOptions {
   bool enabled = true;       ///< off: only the movement limit holds (for measuring what the guard costs)
-  double max_move = 0.25;    ///< ε: no point of any yarn moves more than ε r in one step
+  double max_move = 0.25;    ///< ε: no point of any yarn moves more than ε r in one step (at most half the contact margin)
   int max_depth = 10;        ///< bounding-sphere refinement levels (pieces of 1/2^depth of a segment)
   int max_halvings = 6;      ///< step halvings before the points of still-hit pairs are held for the step
   bool safe_bounds = true;   ///< Yuksel eqs. 8–10: skip pairs whose points stay inside their safe movement

@@ -62,6 +62,9 @@ void YarnRelaxOptions::validate() const {
   check_param(stall, "stall");
   check_param(max_seconds, "max_seconds");
   check_param(checkpoint_minutes, "checkpoint_minutes");
+  if (guard.max_move > 0.5 * contact_margin)
+    throw Error("", "yarn relaxation", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin (" +
+                                           std::to_string(contact_margin) + " r), or pairs could meet between contact updates");
   if (max_steps < 0) throw Error("", "yarn relaxation", "the step cap must not be negative");
   if (checkpoint_every < 0) throw Error("", "yarn relaxation", "the checkpoint interval must not be negative");
   if ((checkpoint_every > 0 || checkpoint_minutes > 0) && checkpoint.empty())

@@ -1,0 +1,219 @@
+// The yarn model's energies against finite differences, and the contact pairs against brute force.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "relax/yarn_contacts.hpp"
+#include "relax/yarn_model.hpp"
+#include "relax/yarn_relax.hpp"
+#include "relax/yarn_shape.hpp"
+#include "relax/yarn_system.hpp"
+#include "testing.hpp"
+#include "yarn_fixtures.hpp"
+
+using namespace skein;
+using namespace skein::relax;
+using V = model::Vec3<double>;
+
+namespace {
+
+/// Central differences of `energy` over the 3 x n coordinates of `x`, compared with `gradient`.
+template <class F>
+void expect_gradient(Eigen::Matrix3Xd x, const Eigen::Matrix3Xd& gradient, F energy, double h = 1e-6, double rel = 1e-5) {
+  double scale = 0;
+  for (int i = 0; i < x.size(); ++i) scale = std::max(scale, std::abs(gradient.data()[i]));
+  ASSERT_GT(scale, 0);
+  for (int i = 0; i < x.size(); ++i) {
+    const double keep = x.data()[i];
+    x.data()[i] = keep + h;
+    const double up = energy(x);
+    x.data()[i] = keep - h;
+    const double down = energy(x);
+    x.data()[i] = keep;
+    EXPECT_NEAR((up - down) / (2 * h), gradient.data()[i], rel * scale + 1e-9) << "coordinate " << i;
+  }
+}
+
+Eigen::Matrix3Xd random_points(int n, double spread, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-spread, spread);
+  Eigen::Matrix3Xd p(3, n);
+  for (int i = 0; i < n; ++i) p.col(i) = Eigen::Vector3d(i * 1.0 + u(rng), u(rng), u(rng));
+  return p;
+}
+
+void to_vec(const Eigen::Matrix3Xd& m, int first, V out[4]) {
+  for (int k = 0; k < 4; ++k) out[k] = {m(0, first + k), m(1, first + k), m(2, first + k)};
+}
+
+}  // namespace
+
+TEST(YarnModel, BasisSumsToOneAndPieceHullHoldsTheCurve) {
+  for (double s : {0.0, 0.3, 0.5, 1.0}) {
+    double w[4], d[4], dd[4];
+    model::basis(s, w);
+    model::basis_d1(s, d);
+    model::basis_d2(s, dd);
+    EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 1, 1e-15);
+    EXPECT_NEAR(d[0] + d[1] + d[2] + d[3], 0, 1e-15);
+    EXPECT_NEAR(dd[0] + dd[1] + dd[2] + dd[3], 0, 1e-15);
+  }
+  const auto p = random_points(4, 2.0, 3);
+  V q[4], b[4];
+  to_vec(p, 0, q);
+  model::piece_bezier(q, 0.2, 0.7, b);
+  const V c = (b[0] + b[1] + b[2] + b[3]) * 0.25;
+  double radius = 0;
+  for (const auto& x : b) radius = std::max(radius, model::norm(x - c));
+  for (int i = 0; i <= 50; ++i) {
+    double w[4];
+    model::basis(0.2 + 0.5 * i / 50.0, w);
+    EXPECT_LE(model::norm(model::combine(w, q) - c), radius + 1e-12);
+  }
+}
+
+TEST(YarnModel, IntrinsicGradientMatchesFiniteDifferences) {
+  const model::IntrinsicParams<double> k{0.7, 3.0, 11.0};
+  const auto p0 = random_points(4, 0.4, 1);
+  const double rest = 1.3;
+  const auto energy = [&](const Eigen::Matrix3Xd& p) {
+    V q[4], g[4] = {};
+    to_vec(p, 0, q);
+    return model::segment_intrinsic(q, rest, k, g);
+  };
+  V q[4], g[4] = {};
+  to_vec(p0, 0, q);
+  model::segment_intrinsic(q, rest, k, g);
+  Eigen::Matrix3Xd grad(3, 4);
+  for (int i = 0; i < 4; ++i) grad.col(i) << g[i].x, g[i].y, g[i].z;
+  expect_gradient(p0, grad, energy);
+}
+
+TEST(YarnModel, ContactGradientMatchesFiniteDifferencesIncludingTheSoftCore) {
+  const V zero{0, 0, 0};
+  for (const double gap : {0.8, 0.15}) {  // ordinary overlap, and centrelines inside the linear core
+    const model::ContactParams<double> k{5.0, 0, 0, 0.5, 0.5};
+    Eigen::Matrix3Xd p(3, 8);
+    p << 0, 1, 2, 3, 1.5, 1.6, 1.4, 1.5,  //
+        0, 0.1, -0.1, 0, -1.5, -0.5, 0.5, 1.5,  //
+        0, 0, 0.1, 0, gap, gap + 0.05, gap - 0.05, gap;
+    const auto energy = [&](const Eigen::Matrix3Xd& x) {
+      V a[4], b[4], ga[4] = {}, d[4] = {}, va[4] = {zero, zero, zero, zero};
+      to_vec(x, 0, a);
+      to_vec(x, 4, b);
+      return model::segment_contact(a, b, va, va, 1.1, 0.9, 5, k, ga, d);
+    };
+    V a[4], b[4], ga[4] = {}, gb[4] = {}, d[4] = {}, va[4] = {zero, zero, zero, zero};
+    to_vec(p, 0, a);
+    to_vec(p, 4, b);
+    const double e = model::segment_contact(a, b, va, va, 1.1, 0.9, 5, k, ga, d);
+    EXPECT_GT(e, 0);
+    model::segment_contact(b, a, va, va, 0.9, 1.1, 5, k, gb, d);
+    Eigen::Matrix3Xd grad(3, 8);
+    for (int i = 0; i < 4; ++i) {
+      grad.col(i) << ga[i].x, ga[i].y, ga[i].z;
+      grad.col(4 + i) << gb[i].x, gb[i].y, gb[i].z;
+    }
+    expect_gradient(p, grad, energy);
+  }
+}
+
+TEST(YarnModel, ContactDampingOpposesRelativeVelocity) {
+  const model::ContactParams<double> k{1.0, 0.3, 2.0, 0.5, 0.5};
+  Eigen::Matrix3Xd p(3, 8);
+  p << 0, 1, 2, 3, 1.5, 1.5, 1.5, 1.5, 0, 0, 0, 0, -1.5, -0.5, 0.5, 1.5, 0, 0, 0, 0, 0.6, 0.6, 0.6, 0.6;
+  V a[4], b[4], g[4] = {}, d[4] = {};
+  to_vec(p, 0, a);
+  to_vec(p, 4, b);
+  const V still{0, 0, 0}, up{0, 0, 1};
+  V va[4] = {still, still, still, still}, vb[4] = {up, up, up, up};
+  model::segment_contact(a, b, va, vb, 1.0, 1.0, 5, k, g, d);
+  // b moves away along the normal: the damping drags a along with it (+z), and only along z.
+  const V total = d[0] + d[1] + d[2] + d[3];
+  EXPECT_GT(total.z, 0);
+  EXPECT_NEAR(total.x, 0, 1e-12);
+}
+
+TEST(YarnModel, StepBoundKeepsTheMoveUnderTheLimit) {
+  for (double u : {0.0, 0.5, 3.0})
+    for (double a : {0.0, 1.0, 100.0}) {
+      if (u == 0 && a == 0) continue;
+      const double dt = model::step_bound(u, a, 0.1);
+      EXPECT_NEAR(u * dt + a * dt * dt, 0.1, 1e-12) << u << " " << a;
+    }
+}
+
+TEST(YarnModel, WholeYarnEnergyGradientMatchesFiniteDifferences) {
+  auto yarn = skein::testing::linked_rings(0.6, 12);
+  for (auto& p : yarn.points) p *= 0.5;  // squeeze: the rings overlap
+  const auto system = make_yarn_system(yarn, 0.9);
+  YarnParams params;
+  params.k_bend = 0.5;
+  const auto pairs = find_contact_pairs(system, system.points, 2 * system.radius);
+  ASSERT_GT(pairs.pairs(), 0);
+  Eigen::Matrix3Xd grad;
+  const double e = yarn_energy(system, params, pairs, system.points, grad);
+  EXPECT_GT(e, 0);
+  expect_gradient(system.points, grad, [&](const Eigen::Matrix3Xd& x) {
+    Eigen::Matrix3Xd g;
+    return yarn_energy(system, params, pairs, x, g);
+  }, 1e-6, 2e-5);
+}
+
+TEST(YarnModel, PatchTrackingGradientMatchesFiniteDifferencesOnBothPhases) {
+  ShapeTargets targets;
+  ShapeTargets::Patch patch;
+  patch.points = {0, 1, 2};
+  patch.weights = {1, 0.5, 0.5};
+  patch.weight_sum = 2;
+  patch.normal = Eigen::Vector3d(0.2, 0.3, 1).normalized();
+  targets.patches.push_back(patch);
+  ShapeOptions options;
+  for (const double drift : {0.1, 3.0}) {  // under and over the biphasic threshold
+    Eigen::Matrix3Xd p = random_points(3, 0.3, 7);
+    targets.patches[0].start_sum = p.col(0) + 0.5 * p.col(1) + 0.5 * p.col(2);
+    p.row(2).array() += drift;
+    Eigen::Matrix3Xd grad = Eigen::Matrix3Xd::Zero(3, 3);
+    patch_energy(targets, options, 1.0, p, grad);
+    expect_gradient(p, grad, [&](const Eigen::Matrix3Xd& x) {
+      Eigen::Matrix3Xd g = Eigen::Matrix3Xd::Zero(3, 3);
+      return patch_energy(targets, options, 1.0, x, g);
+    });
+  }
+}
+
+TEST(YarnContacts, GridFindsTheSamePairsAsBruteForce) {
+  const auto yarn = skein::testing::yarn_of(skein::testing::small_piece(models::swatch(), "rib"));
+  const auto system = make_yarn_system(yarn);
+  for (double margin : {0.0, 0.5, 2.0}) {
+    const auto grid = find_contact_pairs(system, system.points, margin);
+    const auto brute = find_contact_pairs_brute_force(system, system.points, margin);
+    EXPECT_GT(grid.pairs(), 0);
+    EXPECT_EQ(grid.start, brute.start);
+    EXPECT_EQ(grid.partner, brute.partner);
+  }
+}
+
+TEST(YarnSystem, SegmentsNeighboursAndSampleCounts) {
+  const auto yarn = skein::testing::linked_rings(0.5, 24);
+  const auto system = make_yarn_system(yarn);
+  EXPECT_EQ(system.num_segments(), 48);  // closed rings: as many segments as points
+  EXPECT_EQ(system.segment_points[0][0], 23);  // wraps around
+  EXPECT_TRUE(system.adjacent(0, 1));
+  EXPECT_TRUE(system.adjacent(0, 23));  // across the closing point
+  EXPECT_FALSE(system.adjacent(0, 12));
+  EXPECT_FALSE(system.adjacent(0, 24));  // other ring
+  EXPECT_EQ(system.contact_samples % 2, 1);
+  double longest = 0;
+  for (double l : system.rest_length) longest = std::max(longest, l);
+  EXPECT_GT(system.contact_samples, longest / (2 * system.radius));  // Leaf §3.1
+}
+
+TEST(YarnSystem, RejectsBadYarn) {
+  auto yarn = skein::testing::linked_rings();
+  yarn.radius = 0;
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn); }).find("radius must be positive"), std::string::npos);
+  yarn = skein::testing::linked_rings();
+  yarn.points[1] = yarn.points[0];
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn); }).find("consecutive control points coincide"), std::string::npos);
+}

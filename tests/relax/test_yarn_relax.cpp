@@ -1,0 +1,258 @@
+// The yarn relaxer: the pull-through guard, the independent auditor, shape preservation, convergence on
+// knitted pieces, checkpoints and determinism.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <omp.h>
+
+#include "relax/pull_through_guard.hpp"
+#include "relax/yarn_audit.hpp"
+#include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_relax.hpp"
+#include "testing.hpp"
+#include "yarn_fixtures.hpp"
+
+using namespace skein;
+using namespace skein::relax;
+using Eigen::Vector3d;
+
+namespace {
+
+std::vector<Vector3d> curve_points(const mesh::YarnCurves& y, int c) {
+  return {y.points.begin() + y.curve_start[c], y.points.begin() + y.curve_start[c + 1]};
+}
+
+struct Run {
+  YarnState state;
+  YarnRelaxReport report;
+};
+
+Run relaxed(const YarnSystem& system, const YarnRelaxOptions& options, const ShapeTargets& targets = {}) {
+  Run run{initial_state(system, options), {}};
+  run.report = make_cpu_yarn_relaxer(system, targets, options)->run(run.state);
+  return run;
+}
+
+/// Two linked rings whose yarn is given only 30% of its length: they pull tight against each other.
+YarnRelaxOptions squeeze_options() {
+  YarnRelaxOptions o;
+  o.max_steps = 400;
+  o.tolerance = 0;
+  o.guard.max_move = 1.0;  // the largest steps the guard allows
+  o.contact_margin = 2.0;
+  return o;
+}
+
+}  // namespace
+
+TEST(YarnAudit, LinkingNumbersOfLinkedAndSeparateRings) {
+  const auto linked = skein::testing::linked_rings();
+  EXPECT_NEAR(std::abs(linking_number(curve_points(linked, 0), curve_points(linked, 1))), 1.0, 1e-9);
+  auto apart = linked;
+  for (int p = apart.curve_start[1]; p < apart.curve_start[2]; ++p) apart.points[p].z() += 10;
+  EXPECT_NEAR(linking_number(curve_points(apart, 0), curve_points(apart, 1)), 0.0, 1e-9);
+  const auto all = linking_numbers(linked);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(std::abs(all[0].number), 1);
+}
+
+TEST(YarnAudit, ContinuousEdgeTestSeesACrossingAndNotANearMiss) {
+  const Vector3d a0[2] = {{-1, 0, 0}, {1, 0, 0}}, a1[2] = {{-1, 0, 0}, {1, 0, 0}};
+  const Vector3d b0[2] = {{0, -1, 1}, {0, 1, 1}}, b1[2] = {{0, -1, -1}, {0, 1, -1}};  // passes through a
+  EXPECT_TRUE(edges_meet_during(a0, a1, b0, b1, 1e-9));
+  const Vector3d c0[2] = {{2, -1, 1}, {2, 1, 1}}, c1[2] = {{2, -1, -1}, {2, 1, -1}};  // passes beside a
+  EXPECT_FALSE(edges_meet_during(a0, a1, c0, c1, 1e-9));
+}
+
+TEST(YarnAudit, AuditorCountsARingPulledThroughAnother) {
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn);
+  Eigen::Matrix3Xd after = system.points;
+  for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) after(0, p) += 8;  // drag ring B off ring A
+  EXPECT_GT(TopologyAuditor(system).crossings(system.points, after), 0);
+  Eigen::Matrix3Xd lifted = system.points;
+  for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) lifted(1, p) += 0.1;  // a small slide
+  EXPECT_EQ(TopologyAuditor(system).crossings(system.points, lifted), 0);
+}
+
+TEST(PullThroughGuard, StopsARingDraggedThroughAnother) {
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn);
+  GuardOptions options;
+  options.max_move = 1.0;
+  PullThroughGuard guard(system, options);
+  Eigen::Matrix3Xd points = system.points;
+  long crossings = 0;
+  TopologyAuditor auditor(system);
+  for (int step = 0; step < 200; ++step) {  // keep pushing ring B across ring A's yarn
+    Eigen::Matrix3Xd delta = Eigen::Matrix3Xd::Zero(3, system.num_points());
+    for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) delta(0, p) = 0.5;
+    guard.reset(find_contact_pairs(system, points, 4 * system.radius));
+    guard.accept(points, delta);
+    crossings += auditor.crossings(points, points + delta);
+    points += delta;
+  }
+  EXPECT_EQ(crossings, 0);
+  EXPECT_GT(guard.counters().finest_hits, 0);
+  const auto moved = with_points(yarn, points);
+  EXPECT_NEAR(std::abs(linking_number(curve_points(moved, 0), curve_points(moved, 1))), 1.0, 1e-6);
+}
+
+TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn, 0.3);
+  const auto run = relaxed(system, squeeze_options());
+  EXPECT_EQ(run.report.pull_through_events, 0);
+  const auto out = with_points(yarn, run.state.points);
+  EXPECT_NEAR(std::abs(linking_number(curve_points(out, 0), curve_points(out, 1))), 1.0, 1e-6);
+  // They did pull tight: the rings shrank well below their 3 mm start.
+  EXPECT_LT((out.points[0] - out.points[12]).norm(), 4.0);
+}
+
+TEST(YarnRelax, WithoutTheGuardAndWithOversizedStepsTheAuditorSeesThePassThrough) {
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn, 0.3);
+  auto options = squeeze_options();
+  options.guard.enabled = false;
+  options.guard.max_move = 8.0;  // steps of 4 mm: far more than the yarn is thick
+  options.contact_margin = 16.0;
+  options.time_step = 0.2;
+  options.fire_max_step = 1.0;
+  const auto run = relaxed(system, options);
+  const auto out = with_points(yarn, run.state.points);
+  EXPECT_GT(run.report.pull_through_events, 0);
+  EXPECT_NEAR(linking_number(curve_points(out, 0), curve_points(out, 1)), 0.0, 1e-6);
+}
+
+TEST(YarnRelax, KnitPurlSwatchConvergesWithoutPullThrough) {
+  const auto piece = skein::testing::small_piece(models::swatch(), "rib");
+  const auto yarn = skein::testing::yarn_of(piece);
+  const auto system = make_yarn_system(yarn);
+  const auto targets = shape_targets(piece, yarn, {});
+  EXPECT_FALSE(targets.boundary_loops.empty());
+  EXPECT_FALSE(targets.patches.empty());
+  YarnRelaxOptions options;
+  const auto run = relaxed(system, options, targets);
+  EXPECT_TRUE(run.report.converged) << run.report.stopped_by << " residual " << run.report.residual;
+  EXPECT_EQ(run.report.pull_through_events, 0);
+  Eigen::Matrix3Xd gradient;
+  EXPECT_LT(run.report.energy, yarn_energy(system, options.params, find_contact_pairs(system, system.points, system.radius), system.points, gradient));
+  // Eq. 5 held: every border loop's sum of positions is where it started.
+  for (const auto& loop : targets.boundary_loops) {
+    Vector3d before = Vector3d::Zero(), after = Vector3d::Zero();
+    for (int p : loop) {
+      before += system.points.col(p);
+      after += run.state.points.col(p);
+    }
+    EXPECT_LT((after - before).norm(), 1e-9 * loop.size());
+  }
+}
+
+TEST(YarnRelax, RibbedTubeConvergesWithoutPullThrough) {
+  const auto piece = skein::testing::small_piece(models::tube(), "rib", {12, 10});
+  const auto yarn = skein::testing::yarn_of(piece);
+  const auto system = make_yarn_system(yarn);
+  const auto run = relaxed(system, {}, shape_targets(piece, yarn, {}));
+  EXPECT_TRUE(run.report.converged) << run.report.stopped_by << " residual " << run.report.residual;
+  EXPECT_EQ(run.report.pull_through_events, 0);
+}
+
+TEST(YarnRelax, EulerStaysUnderTheStepBoundAndLowersTheEnergy) {
+  const auto piece = skein::testing::small_piece(models::swatch(), "");
+  const auto yarn = skein::testing::yarn_of(piece);
+  const auto system = make_yarn_system(yarn);
+  YarnRelaxOptions options;
+  options.method = YarnMethod::Euler;
+  options.max_steps = 150;
+  auto state = initial_state(system, options);
+  double first = -1, last = 0, largest = 0;
+  make_cpu_yarn_relaxer(system, {}, options)->run(state, [&](const YarnStepLog& s) {
+    if (first < 0) first = s.energy;
+    last = s.energy;
+    largest = std::max(largest, s.moved);
+  });
+  EXPECT_LT(last, first);
+  EXPECT_LE(largest, options.guard.max_move * system.radius * (1 + 1e-9));
+}
+
+TEST(YarnRelax, RunsAreDeterministicForAnyThreadCount) {
+  const auto piece = skein::testing::small_piece(models::swatch(), "seed");
+  const auto yarn = skein::testing::yarn_of(piece);
+  const auto system = make_yarn_system(yarn);
+  const auto targets = shape_targets(piece, yarn, {});
+  YarnRelaxOptions options;
+  options.max_steps = 60;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto one = relaxed(system, options, targets);
+  omp_set_num_threads(std::max(2, threads));
+  const auto two = relaxed(system, options, targets);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.state.points, two.state.points);
+  EXPECT_EQ(one.report.guard.pairs_tested, two.report.guard.pairs_tested);
+}
+
+TEST(YarnCheckpoint, ResumeEqualsAnUninterruptedRun) {
+  skein::testing::ScratchDir dir;
+  const auto piece = skein::testing::small_piece(models::swatch(), "rib");
+  const auto yarn = skein::testing::yarn_of(piece);
+  const auto system = make_yarn_system(yarn);
+  const auto targets = shape_targets(piece, yarn, {});
+  YarnRelaxOptions options;
+  options.max_steps = 70;
+  options.tolerance = 0;
+  options.checkpoint = dir / "run.ckp";
+  options.checkpoint_every = 25;
+  const auto whole = relaxed(system, options, targets);
+  ASSERT_EQ(whole.report.steps, 70);
+  // The file holds the state after step 50; go on from there to 70.
+  auto state = read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points());
+  EXPECT_EQ(state.step, 50);
+  options.checkpoint = dir / "resumed.ckp";
+  const auto report = make_cpu_yarn_relaxer(system, targets, options)->run(state);
+  EXPECT_EQ(report.steps, 70);
+  EXPECT_EQ(state.points, whole.state.points);
+  EXPECT_EQ(state.velocities, whole.state.velocities);
+  EXPECT_EQ(report.guard.pairs_tested, whole.report.guard.pairs_tested);
+}
+
+TEST(YarnCheckpoint, DamagedOrForeignCheckpointsAreRejected) {
+  skein::testing::ScratchDir dir;
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn);
+  YarnRelaxOptions options;
+  const auto fingerprint = checkpoint_fingerprint(system, options.method);
+  const auto path = dir / "good.ckp";
+  write_checkpoint(path, fingerprint, initial_state(system, options));
+  EXPECT_NO_THROW(read_checkpoint(path, fingerprint, system.num_points()));
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto error_for = [&](const std::string& name, const std::string& content, std::uint64_t fp) {
+    const auto p = dir.write(name, content);
+    return skein::testing::error_of([&] { read_checkpoint(p, fp, system.num_points()); });
+  };
+  std::string flipped = bytes;
+  flipped[200] ^= 0x10;
+  EXPECT_NE(error_for("flipped.ckp", flipped, fingerprint).find("checksum does not match"), std::string::npos);
+  EXPECT_NE(error_for("short.ckp", bytes.substr(0, bytes.size() / 2), fingerprint).find("damaged or truncated"), std::string::npos);
+  EXPECT_NE(error_for("tiny.ckp", bytes.substr(0, 10), fingerprint).find("truncated"), std::string::npos);
+  EXPECT_NE(error_for("text.ckp", "hello, this is not a checkpoint at all", fingerprint).find("not a skein checkpoint"), std::string::npos);
+  EXPECT_NE(error_for("other.ckp", bytes, checkpoint_fingerprint(system, YarnMethod::Euler)).find("another yarn or method"), std::string::npos);
+  const auto missing = skein::testing::error_of([&] { read_checkpoint(dir / "none.ckp", fingerprint, system.num_points()); });
+  EXPECT_NE(missing.find("none.ckp"), std::string::npos);
+  EXPECT_NE(error_for("flipped.ckp", flipped, fingerprint).find("flipped.ckp"), std::string::npos);
+}
+
+TEST(YarnRelax, OptionsAreValidated) {
+  YarnRelaxOptions o;
+  o.params.k_contact = 0;
+  EXPECT_NE(skein::testing::error_of([&] { o.validate(); }).find("k_contact must be positive"), std::string::npos);
+  o = {};
+  o.guard.max_move = 0;
+  EXPECT_NE(skein::testing::error_of([&] { o.validate(); }).find("movement limit"), std::string::npos);
+  o = {};
+  o.checkpoint_every = 10;
+  EXPECT_NE(skein::testing::error_of([&] { o.validate(); }).find("needs a checkpoint file"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([] { parse_yarn_method("newton"); }).find("expected euler or fire"), std::string::npos);
+}

@@ -1,0 +1,57 @@
+#pragma once
+// Yarn for relaxation tests: rings, and small knitted pieces emitted from the bundled models.
+#include <cmath>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "garments.hpp"
+#include "stitchmesh/edits.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/stitch_model.hpp"
+#include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+
+namespace skein::testing {
+
+/// A closed ring of `n` points of radius `radius` around `centre`, in the plane spanned by `u` and `v`.
+inline void add_ring(mesh::YarnCurves& yarn, const Eigen::Vector3d& centre, const Eigen::Vector3d& u, const Eigen::Vector3d& v, double radius,
+                     int n) {
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    yarn.points.push_back(centre + radius * (std::cos(a) * u + std::sin(a) * v));
+    yarn.point_face.push_back(-1);
+    yarn.point_type.push_back(-1);
+  }
+  yarn.curve_start.push_back(static_cast<int>(yarn.points.size()));
+  yarn.closed.push_back(1);
+}
+
+/// Two rings through each other (a Hopf link), each of radius 3 mm, yarn radius r.
+inline mesh::YarnCurves linked_rings(double r = 0.5, int n = 24) {
+  mesh::YarnCurves yarn;
+  yarn.radius = r;
+  add_ring(yarn, {0, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, n);
+  add_ring(yarn, {3, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 3, n);
+  return yarn;
+}
+
+/// A stitch mesh of one of the bundled models at a coarse stitch size, with a fill ("" keeps knit).
+inline mesh::StitchMesh small_piece(const mesh::InputMesh& m, const std::string& fill, mesh::StitchSize size = {15, 12.5}) {
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, size));
+  if (!fill.empty()) {
+    std::vector<int> all(s.faces.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    s = mesh::fill(s, all, mesh::parse_fill(fill));
+  }
+  return s;
+}
+
+inline mesh::YarnCurves yarn_of(const mesh::StitchMesh& s, double radius = 1.0) {
+  mesh::EmitOptions options;
+  options.yarn_radius = radius;
+  return mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), options);
+}
+
+}  // namespace skein::testing
