@@ -5,6 +5,7 @@ find_package(assimp REQUIRED)              # target assimp::assimp
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(spdlog REQUIRED)
+find_package(OpenMP REQUIRED)
 find_package(TBB REQUIRED)
 find_package(PNG REQUIRED)
 

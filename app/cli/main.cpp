@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include <omp.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -621,8 +622,8 @@ int main(int argc, char** argv) {
         if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
       }
       const auto system = relax::make_yarn_system(yarn, ry_take_up);
-      spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
-                   system.num_curves(), system.num_points(), system.num_segments(), system.radius, system.contact_samples,
+      spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
+                   system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
                    targets.boundary_loops.size(), targets.patches.size(), t.seconds());
       auto state = relax::initial_state(system, ry_options);
       if (!ry_resume.empty()) {
@@ -636,7 +637,7 @@ int main(int argc, char** argv) {
       }
       ProgressBar bar(isatty(fileno(stderr)) && !quiet);
       auto relaxer = relax::make_cpu_yarn_relaxer(system, targets, ry_options);
-      spdlog::info("relaxing on the CPU with {} ({} threads)", ry_method, Eigen::nbThreads());
+      spdlog::info("relaxing on the CPU with {} ({} threads)", ry_method, omp_get_max_threads());
       const double log_tol = std::log(std::max(ry_options.tolerance, 1e-12));
       const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
         if (log)
@@ -655,7 +656,7 @@ int main(int argc, char** argv) {
                    report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
                    report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), ry_out);
       if (!ry_report.empty())
-        write_json({{"input", ry_in}, {"method", ry_method}, {"backend", report.backend}, {"threads", Eigen::nbThreads()},
+        write_json({{"input", ry_in}, {"method", ry_method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
                     {"control_points", system.num_points()}, {"segments", system.num_segments()},
                     {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
                     {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},

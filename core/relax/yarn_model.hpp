@@ -153,41 +153,24 @@ struct ContactParams {
   T d_soft;     ///< distance / 2r below which the kernel is linear
 };
 
-/// Contact energy (Leaf eq. 9) between segments a and b, each sampled at n (odd) Simpson points, with rest
-/// lengths la, lb: k l_a l_b sum_ij w_i w_j f(|y_a(s_i) - y_b(s_j)| / 2r). Adds the gradient with respect to
-/// a's control points to grad_a[4] (b's is the mirror image) and returns the energy.
-/// Contact damping (eq. 12) from the control-point velocities va, vb adds its force on a to damp_a[4].
+/// One pair of contact samples (Leaf eqs. 9 and 12): sample a at ya moving with ua, sample b at yb moving
+/// with ub, quadrature weight `weight` (w_i w_j l_a l_b). Returns the contact energy; adds its gradient with
+/// respect to ya to grad_a and the contact damping force on a to damp_a (b's are the mirror images).
 template <class T>
-SKEIN_HD T segment_contact(const Vec3<T> a[4], const Vec3<T> b[4], const Vec3<T> va[4], const Vec3<T> vb[4], T la, T lb, int n,
-                           const ContactParams<T>& k, Vec3<T> grad_a[4], Vec3<T> damp_a[4]) {
-  T energy = 0;
-  const T inv_2r = T(1) / (2 * k.radius), scale = la * lb;
-  for (int i = 0; i < n; ++i) {
-    T wa[4];
-    basis(T(i) / T(n - 1), wa);
-    const Vec3<T> ya = combine(wa, a), ua = combine(wa, va);
-    const T qa = simpson_weight<T>(i, n);
-    for (int j = 0; j < n; ++j) {
-      T wb[4];
-      basis(T(j) / T(n - 1), wb);
-      const Vec3<T> diff = combine(wb, b) - ya;  // n_ij = y_b - y_a
-      const T dist = norm(diff);
-      if (!(dist * inv_2r < T(1)) || !(dist > T(0))) continue;
-      const T qw = qa * simpson_weight<T>(j, n) * scale;
-      T slope;
-      energy += qw * k.k_contact * contact_kernel(dist * inv_2r, k.d_soft, slope);
-      const Vec3<T> normal = diff * (T(1) / dist);
-      // dE/dy_a = k qw f'(d) * d(d)/dy_a = -k qw f'(d) n / 2r
-      const Vec3<T> g = normal * (-k.k_contact * qw * slope * inv_2r);
-      // Contact damping force on a (eq. 12): 2 qw [k_dt dv - (k_dt - k_dn) n (n . dv)], dv = v_b - v_a.
-      const Vec3<T> dv = combine(wb, vb) - ua;
-      const Vec3<T> f = (dv * k.k_dt - normal * ((k.k_dt - k.k_dn) * dot(normal, dv))) * (2 * qw);
-      for (int m = 0; m < 4; ++m) {
-        grad_a[m] += g * wa[m];
-        damp_a[m] += f * wa[m];
-      }
-    }
-  }
+SKEIN_HD T sample_contact(const Vec3<T>& ya, const Vec3<T>& yb, const Vec3<T>& ua, const Vec3<T>& ub, T weight, const ContactParams<T>& k,
+                          Vec3<T>& grad_a, Vec3<T>& damp_a) {
+  const Vec3<T> diff = yb - ya;  // n_ij = y_b - y_a
+  const T dist2 = dot(diff, diff), reach = 2 * k.radius;
+  if (!(dist2 < reach * reach) || !(dist2 > T(0))) return 0;
+  const T dist = std::sqrt(dist2), inv_2r = T(1) / reach;
+  T slope;
+  const T energy = weight * k.k_contact * contact_kernel(dist * inv_2r, k.d_soft, slope);
+  const Vec3<T> normal = diff * (T(1) / dist);
+  // dE/dy_a = k w f'(d) dd/dy_a = -k w f'(d) n / 2r
+  grad_a += normal * (-k.k_contact * weight * slope * inv_2r);
+  // Eq. 12 on a: 2 w [k_dt dv - (k_dt - k_dn) n (n . dv)], dv = u_b - u_a.
+  const Vec3<T> dv = ub - ua;
+  damp_a += (dv * k.k_dt - normal * ((k.k_dt - k.k_dn) * dot(normal, dv))) * (2 * weight);
   return energy;
 }
 

@@ -85,30 +85,57 @@ double yarn_energy(const YarnSystem& system, const YarnParams& params, const Con
   const model::IntrinsicParams<double> intrinsic{params.k_bend, params.k_stretch, params.k_length};
   const model::ContactParams<double> contact{params.k_contact, velocities ? params.k_dt : 0.0, velocities ? params.k_dn : 0.0, system.radius,
                                              params.contact_soft};
-  // Per segment: the gradient on its four control points (and the contact damping force), gathered per
-  // point afterwards (Leaf §3.2 stencils): no two threads write the same place.
-  std::vector<std::array<V, 4>> seg_grad(segments), seg_damp(segments);
-  std::vector<double> seg_energy(segments);
   const V zero{0, 0, 0};
-#pragma omp parallel for schedule(dynamic, 256)
+  // Contact samples of every segment (Leaf §3.1): position, velocity, and Simpson weight times rest length.
+  const int samples = system.sample_start.back() + system.contact_samples.back();
+  std::vector<V> pos(samples), vel(samples, zero);
+  std::vector<double> weight(samples);
+#pragma omp parallel for schedule(static)
   for (int s = 0; s < segments; ++s) {
-    V p[4], u[4] = {zero, zero, zero, zero}, g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
+    V p[4], u[4] = {zero, zero, zero, zero};
     for (int k = 0; k < 4; ++k) {
       p[k] = vec(points.col(system.segment_points[s][k]));
       if (velocities) u[k] = vec(velocities->col(system.segment_points[s][k]));
     }
-    double e = model::segment_intrinsic(p, system.rest_length[s], intrinsic, g);
-    for (int i = pairs.start[s]; i < pairs.start[s + 1]; ++i) {
-      const int t = pairs.partner[i];
-      V q[4], w[4] = {zero, zero, zero, zero};
-      for (int k = 0; k < 4; ++k) {
-        q[k] = vec(points.col(system.segment_points[t][k]));
-        if (velocities) w[k] = vec(velocities->col(system.segment_points[t][k]));
-      }
-      // Each pair is seen from both sides; half its energy on each.
-      e += 0.5 * model::segment_contact(p, q, u, w, system.rest_length[s], system.rest_length[t], system.contact_samples, contact, g, d);
+    const int n = system.contact_samples[s];
+    for (int i = 0; i < n; ++i) {
+      double w[4];
+      model::basis(static_cast<double>(i) / (n - 1), w);
+      pos[system.sample_start[s] + i] = model::combine(w, p);
+      vel[system.sample_start[s] + i] = model::combine(w, u);
+      weight[system.sample_start[s] + i] = model::simpson_weight<double>(i, n) * system.rest_length[s];
     }
-    seg_energy[s] = e;
+  }
+  // Per segment: the gradient on its four control points (and the contact damping force), gathered per
+  // point afterwards (Leaf §3.2 stencils): no two threads write the same place.
+  std::vector<std::array<V, 4>> seg_grad(segments), seg_damp(segments);
+  std::vector<double> seg_energy(segments);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int s = 0; s < segments; ++s) {
+    V p[4], g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
+    for (int k = 0; k < 4; ++k) p[k] = vec(points.col(system.segment_points[s][k]));
+    double e = model::segment_intrinsic(p, system.rest_length[s], intrinsic, g);
+    const int first = system.sample_start[s], n = system.contact_samples[s];
+    V sample_grad[64], sample_damp[64];  // make_yarn_system keeps n far below this
+    for (int i = 0; i < n; ++i) sample_grad[i] = sample_damp[i] = zero;
+    double contact_energy = 0;
+    for (int k = pairs.start[s]; k < pairs.start[s + 1]; ++k) {
+      const int t = pairs.partner[k], other = system.sample_start[t];
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < system.contact_samples[t]; ++j)
+          contact_energy += model::sample_contact(pos[first + i], pos[other + j], vel[first + i], vel[other + j],
+                                                  weight[first + i] * weight[other + j], contact, sample_grad[i], sample_damp[i]);
+    }
+    // Samples to control points through the basis.
+    for (int i = 0; i < n; ++i) {
+      double w[4];
+      model::basis(static_cast<double>(i) / (n - 1), w);
+      for (int k = 0; k < 4; ++k) {
+        g[k] += sample_grad[i] * w[k];
+        d[k] += sample_damp[i] * w[k];
+      }
+    }
+    seg_energy[s] = e + 0.5 * contact_energy;  // each pair is seen from both sides
     for (int k = 0; k < 4; ++k) {
       seg_grad[s][k] = g[k];
       seg_damp[s][k] = d[k];
@@ -280,10 +307,9 @@ private:
     if (m_options.method == YarnMethod::Euler) {
       // Leaf eq. 2: the largest step after which no contact sample moves more than ε r.
       double dt = state.time_step;
-      const int ns = m_system.contact_samples;
 #pragma omp parallel for schedule(static) reduction(min : dt)
       for (int s = 0; s < m_system.num_segments(); ++s)
-        for (int i = 0; i < ns; ++i) {
+        for (int i = 0, ns = m_system.contact_samples[s]; i < ns; ++i) {
           double w[4];
           model::basis(static_cast<double>(i) / (ns - 1), w);
           Eigen::Vector3d u = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();

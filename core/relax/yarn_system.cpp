@@ -47,7 +47,6 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
   for (int p = 0; p < n; ++p) s.points.col(p) = curves.points[p];
   s.mass.assign(n, 0.0);
   s.curve_length.assign(curves.curves(), 0.0);
-  double longest = 0;
   for (int c = 0; c < curves.curves(); ++c) {
     const int begin = curves.curve_start[c], size = curves.curve_size(c);
     const bool closed = curves.closed[c] && size > 2;
@@ -67,14 +66,20 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
       s.curve_length[c] += s.rest_length.back();
       s.mass[at(k)] += 0.5 * s.rest_length.back();
       s.mass[at(k + 1)] += 0.5 * s.rest_length.back();
-      longest = std::max(longest, s.rest_length.back());
     }
   }
   if (s.num_segments() == 0) throw Error("", "", "the yarn has no segment (every curve has fewer than two points)");
-  // Leaf 2018 §3.1: an odd number of contact samples, more than L / 2r per segment.
-  s.contact_samples = static_cast<int>(std::floor(longest / (2 * s.radius))) + 1;
-  if (s.contact_samples % 2 == 0) ++s.contact_samples;
-  s.contact_samples = std::max(3, s.contact_samples);
+  // Leaf 2018 §3.1: an odd number of contact samples, more than L / 2r, per segment (Leaf takes the
+  // shortest segment's count for all; per segment keeps long segments covered and short ones cheap).
+  for (double l : s.rest_length) {
+    int n = static_cast<int>(std::floor(l / (2 * s.radius))) + 1;
+    if (n % 2 == 0) ++n;
+    if (n > 63)
+      throw Error("", "segment " + std::to_string(s.contact_samples.size()),
+                  "a segment " + std::to_string(l) + " mm long, more than 60 yarn diameters: resample the yarn more finely");
+    s.sample_start.push_back(s.sample_start.empty() ? 0 : s.sample_start.back() + s.contact_samples.back());
+    s.contact_samples.push_back(std::max(3, n));
+  }
   // Point -> segment stencil (Leaf §3.2): every segment whose four control points include the point.
   std::vector<int> count(n + 1, 0);
   for (const auto& sp : s.segment_points)

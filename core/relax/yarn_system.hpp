@@ -24,7 +24,8 @@ struct YarnSystem {
   std::vector<int> point_segments_start;         ///< CSR: point p touches segments point_segments[start[p] .. start[p+1])
   std::vector<int> point_segments;               ///< with the slot (0..3) in the lowest two bits
   double radius = 0;                             ///< yarn radius r [mm]
-  int contact_samples = 3;                       ///< sphere samples per segment: odd, more than max rest length / 2r
+  std::vector<int> contact_samples;              ///< per segment: sphere samples, odd and more than its rest length / 2r
+  std::vector<int> sample_start;                 ///< per segment: its first sample in a flat list of all samples
 
   int num_points() const { return static_cast<int>(points.cols()); }
   int num_segments() const { return static_cast<int>(segment_points.size()); }

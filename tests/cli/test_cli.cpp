@@ -163,3 +163,45 @@ TEST(Cli, RelaxMeshWritesTheRelaxedProjectStretchAndReport) {
   EXPECT_NE(labels_only.output.find("needs an input mesh and a stitch mesh"), std::string::npos) << labels_only.output;
   EXPECT_EQ(run_skein("relax-mesh " + project + " --alpha 2 -o " + (dir / "x.skein").string()).status, 2);
 }
+
+TEST(Cli, RelaxYarnWritesYarnReportLogAndCheckpointAndResumes) {
+  ScratchDir dir;
+  const auto project = dir / "swatch.skein";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project.string()).status, 0);
+  ASSERT_EQ(run_skein("edit " + project.string() + " --fill rib -o " + project.string()).status, 0);
+  const auto out = dir / "relaxed.bcc", report = dir / "report.json", log = dir / "log.csv", ckp = dir / "run.ckp";
+  auto r = run_skein("relax-yarn " + project.string() + " -o " + out.string() + " --report " + report.string() + " --log " + log.string() +
+                     " --checkpoint " + ckp.string() + " --checkpoint-every 20 --max-steps 40");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_TRUE(std::filesystem::exists(ckp));
+  const auto json = slurp(report);
+  for (const char* key : {"\"converged\"", "\"steps\": 40", "\"wall_seconds\"", "\"residual\"", "\"guard_events\"", "\"pull_through_events\": 0"})
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  EXPECT_NE(slurp(log).find("step,energy,residual"), std::string::npos);
+  // Resume from step 40 for 10 more steps.
+  r = run_skein("relax-yarn " + project.string() + " -o " + (dir / "more.bcc").string() + " --resume " + ckp.string() + " --max-steps 50");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("resuming"), std::string::npos) << r.output;
+  // The audit between the emitted and the relaxed yarn finds nothing pulled through.
+  ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + (dir / "start.bcc").string()).status, 0);
+  r = run_skein("audit " + (dir / "start.bcc").string() + " " + out.string());
+  EXPECT_NE(r.output.find("centreline crossings"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
+  ScratchDir dir;
+  const auto bad = dir.write("bad.ckp", "SKEINCKP and then nothing useful");
+  const auto project = dir / "tube.skein";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/tube.obj --auto-label --stitch-size 15 -o " + project.string()).status, 0);
+  auto r = run_skein("relax-yarn " + project.string() + " -o " + (dir / "out.bcc").string() + " --resume " + bad.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("bad.ckp"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.bcc"));
+  ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + (dir / "a.bcc").string()).status, 0);
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + (dir / "s.skein").string()).status, 0);
+  ASSERT_EQ(run_skein("yarn " + (dir / "s.skein").string() + " -o " + (dir / "b.bcc").string()).status, 0);
+  r = run_skein("audit " + (dir / "a.bcc").string() + " " + (dir / "b.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("holds other curves"), std::string::npos) << r.output;
+}

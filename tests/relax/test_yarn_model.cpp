@@ -90,48 +90,39 @@ TEST(YarnModel, IntrinsicGradientMatchesFiniteDifferences) {
 }
 
 TEST(YarnModel, ContactGradientMatchesFiniteDifferencesIncludingTheSoftCore) {
-  const V zero{0, 0, 0};
   for (const double gap : {0.8, 0.15}) {  // ordinary overlap, and centrelines inside the linear core
-    const model::ContactParams<double> k{5.0, 0, 0, 0.5, 0.5};
-    Eigen::Matrix3Xd p(3, 8);
-    p << 0, 1, 2, 3, 1.5, 1.6, 1.4, 1.5,  //
-        0, 0.1, -0.1, 0, -1.5, -0.5, 0.5, 1.5,  //
-        0, 0, 0.1, 0, gap, gap + 0.05, gap - 0.05, gap;
-    const auto energy = [&](const Eigen::Matrix3Xd& x) {
-      V a[4], b[4], ga[4] = {}, d[4] = {}, va[4] = {zero, zero, zero, zero};
-      to_vec(x, 0, a);
-      to_vec(x, 4, b);
-      return model::segment_contact(a, b, va, va, 1.1, 0.9, 5, k, ga, d);
-    };
-    V a[4], b[4], ga[4] = {}, gb[4] = {}, d[4] = {}, va[4] = {zero, zero, zero, zero};
-    to_vec(p, 0, a);
-    to_vec(p, 4, b);
-    const double e = model::segment_contact(a, b, va, va, 1.1, 0.9, 5, k, ga, d);
-    EXPECT_GT(e, 0);
-    model::segment_contact(b, a, va, va, 0.9, 1.1, 5, k, gb, d);
-    Eigen::Matrix3Xd grad(3, 8);
-    for (int i = 0; i < 4; ++i) {
-      grad.col(i) << ga[i].x, ga[i].y, ga[i].z;
-      grad.col(4 + i) << gb[i].x, gb[i].y, gb[i].z;
-    }
-    expect_gradient(p, grad, energy);
+    // Two open yarns of four points crossing each other `gap` apart (yarn radius 0.5).
+    mesh::YarnCurves yarn;
+    yarn.radius = 0.5;
+    for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), {1, 0.1, 0}, {2, -0.1, 0.1}, {3, 0, 0}, {1.5, -1.5, gap}, {1.6, -0.5, gap + 0.05},
+                                    {1.4, 0.5, gap - 0.05}, {1.5, 1.5, gap}})
+      yarn.points.push_back(p);
+    yarn.curve_start = {0, 4, 8};
+    yarn.closed = {0, 0};
+    yarn.point_face.assign(8, -1);
+    yarn.point_type.assign(8, -1);
+    const auto system = make_yarn_system(yarn);
+    YarnParams params;
+    params.k_bend = params.k_stretch = params.k_length = 0;  // contact alone
+    const auto pairs = find_contact_pairs(system, system.points, 0.5);
+    ASSERT_GT(pairs.pairs(), 0);
+    Eigen::Matrix3Xd grad;
+    EXPECT_GT(yarn_energy(system, params, pairs, system.points, grad), 0);
+    expect_gradient(system.points, grad, [&](const Eigen::Matrix3Xd& x) {
+      Eigen::Matrix3Xd g;
+      return yarn_energy(system, params, pairs, x, g);
+    });
   }
 }
 
 TEST(YarnModel, ContactDampingOpposesRelativeVelocity) {
   const model::ContactParams<double> k{1.0, 0.3, 2.0, 0.5, 0.5};
-  Eigen::Matrix3Xd p(3, 8);
-  p << 0, 1, 2, 3, 1.5, 1.5, 1.5, 1.5, 0, 0, 0, 0, -1.5, -0.5, 0.5, 1.5, 0, 0, 0, 0, 0.6, 0.6, 0.6, 0.6;
-  V a[4], b[4], g[4] = {}, d[4] = {};
-  to_vec(p, 0, a);
-  to_vec(p, 4, b);
-  const V still{0, 0, 0}, up{0, 0, 1};
-  V va[4] = {still, still, still, still}, vb[4] = {up, up, up, up};
-  model::segment_contact(a, b, va, vb, 1.0, 1.0, 5, k, g, d);
-  // b moves away along the normal: the damping drags a along with it (+z), and only along z.
-  const V total = d[0] + d[1] + d[2] + d[3];
-  EXPECT_GT(total.z, 0);
-  EXPECT_NEAR(total.x, 0, 1e-12);
+  V g{0, 0, 0}, d{0, 0, 0};
+  // b sits 0.6 above a and moves away along the normal: the damping drags a along (+z), and only along z.
+  model::sample_contact(V{0, 0, 0}, V{0, 0, 0.6}, V{0, 0, 0}, V{0, 0, 1}, 1.0, k, g, d);
+  EXPECT_GT(d.z, 0);
+  EXPECT_NEAR(d.x, 0, 1e-12);
+  EXPECT_GT(g.z, 0);  // the energy grows toward b: the contact force pushes a down, away from it
 }
 
 TEST(YarnModel, StepBoundKeepsTheMoveUnderTheLimit) {
@@ -203,10 +194,10 @@ TEST(YarnSystem, SegmentsNeighboursAndSampleCounts) {
   EXPECT_TRUE(system.adjacent(0, 23));  // across the closing point
   EXPECT_FALSE(system.adjacent(0, 12));
   EXPECT_FALSE(system.adjacent(0, 24));  // other ring
-  EXPECT_EQ(system.contact_samples % 2, 1);
-  double longest = 0;
-  for (double l : system.rest_length) longest = std::max(longest, l);
-  EXPECT_GT(system.contact_samples, longest / (2 * system.radius));  // Leaf §3.1
+  for (int s = 0; s < system.num_segments(); ++s) {
+    EXPECT_EQ(system.contact_samples[s] % 2, 1);
+    EXPECT_GT(system.contact_samples[s], system.rest_length[s] / (2 * system.radius));  // Leaf §3.1
+  }
 }
 
 TEST(YarnSystem, RejectsBadYarn) {
