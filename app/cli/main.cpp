@@ -342,7 +342,7 @@ int main(int argc, char** argv) {
   ry->add_option("--checkpoint-minutes", ry_options.checkpoint_minutes, "minutes between checkpoints");
   ry->add_option("--resume", ry_resume, "continue from this checkpoint (same input and method)");
   ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
-  ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points");
+  ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points, crossings");
   ry->add_option("--png", ry_png, "picture of the relaxed yarn");
   ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
@@ -356,6 +356,8 @@ int main(int argc, char** argv) {
   ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
   ry->add_option("--k-length", ry_options.params.k_length, "length penalty stiffness (Leaf eq. 1)")->capture_default_str();
   ry->add_option("--k-contact", ry_options.params.k_contact, "contact stiffness (Leaf eq. 9)")->capture_default_str();
+  ry->add_option("--k-global", ry_options.params.k_global, "mass-proportional damping (Leaf eq. 11), Euler only")->capture_default_str();
+  ry->add_option("--time-step", ry_options.time_step, "Euler's step and FIRE's first step [s] (0: 0.002 for Euler, 0.02 for FIRE)")->capture_default_str();
   ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
   ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");
   ry->add_flag("--no-shape", ry_no_shape, "no boundary constraints or patch-tracking forces");
@@ -633,7 +635,7 @@ int main(int argc, char** argv) {
       std::unique_ptr<std::ofstream> log;
       if (!ry_log.empty()) {
         log = std::make_unique<std::ofstream>(ry_log);
-        *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points\n";
+        *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
       }
       ProgressBar bar(isatty(fileno(stderr)) && !quiet);
       auto relaxer = relax::make_cpu_yarn_relaxer(system, targets, ry_options);
@@ -642,7 +644,7 @@ int main(int argc, char** argv) {
       const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
         if (log)
           *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-               << s.guard_hits << ',' << s.held_points << '\n';
+               << s.guard_hits << ',' << s.held_points << ',' << s.crossings << '\n';
         const double by_steps = static_cast<double>(s.step) / std::max<long>(ry_options.max_steps, 1);
         const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
         char text[160];

@@ -68,7 +68,7 @@ void PullThroughGuard::reset(const ContactPairs& pairs) {
   m_pairs.clear();
   for (int a = 0; a + 1 < static_cast<int>(pairs.start.size()); ++a)
     for (int k = pairs.start[a]; k < pairs.start[a + 1]; ++k)
-      if (pairs.partner[k] > a) m_pairs.push_back({a, pairs.partner[k]});
+      if (pairs.partner[k] > a && !m_system.adjacent(a, pairs.partner[k])) m_pairs.push_back({a, pairs.partner[k]});
 }
 
 bool PullThroughGuard::pieces_meet(const PairState& pair, const Eigen::Matrix3Xd& points, const Eigen::Matrix3Xd& delta, double& gap,

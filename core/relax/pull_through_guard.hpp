@@ -42,7 +42,8 @@ public:
   /// whose sum of positions is constrained).
   PullThroughGuard(const YarnSystem& system, const GuardOptions& options, std::vector<int> groups = {});
 
-  /// A new pair set (after the contact cache is rebuilt): every pair is tested again.
+  /// A new pair set (after the contact cache is rebuilt): every pair is tested again. Pairs of one piece of
+  /// yarn (YarnSystem::adjacent) are left out.
   void reset(const ContactPairs& pairs);
   /// Makes `delta` [mm] safe to add to `points` in place; returns the factor the step was scaled by
   /// (1 when untouched, 0 when only held points would have moved).

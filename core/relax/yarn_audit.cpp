@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -54,6 +55,10 @@ bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3
     at(t, p);
     return segment_distance(p[0], p[1], p[2], p[3]);
   };
+  // Points of the edges move at most as far as their farthest end: edges further apart than both moves
+  // together cannot meet.
+  const double reach = std::max((a1[0] - a0[0]).norm(), (a1[1] - a0[1]).norm()) + std::max((b1[0] - b0[0]).norm(), (b1[1] - b0[1]).norm());
+  if (segment_distance(a0[0], a0[1], b0[0], b0[1]) > reach + tolerance) return false;
   // Two moving edges can only meet when their four ends are coplanar: V(t) = e1 . (e2 x e3) = 0, a cubic.
   const Vector3d u1 = a0[1] - a0[0], u2 = b0[0] - a0[0], u3 = b0[1] - a0[0];
   const Vector3d w1 = (a1[1] - a1[0]) - u1, w2 = (b1[0] - a1[0]) - u2, w3 = (b1[1] - a1[0]) - u3;
@@ -150,16 +155,13 @@ long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Mat
   std::vector<std::pair<std::uint64_t, long>> sorted(edges);
   for (long e = 0; e < edges; ++e) sorted[e] = {key_of(boxes[e].center(), 0, 0, 0), e};
   std::sort(sorted.begin(), sorted.end());
-  const auto neighbours = [&](long s, long t) {
-    if (s == t) return true;
-    const int cs = m_system.segment_curve[s];
-    if (cs != m_system.segment_curve[t]) return false;
-    const long gap = std::abs(s - t);
-    if (gap == 1) return true;
-    // Closed curves: the last segment meets the first.
-    const long n = m_system.closed[cs] ? m_system.curve_start[cs + 1] - m_system.curve_start[cs] : -1;
-    return n > 0 && gap == n - 1;
-  };
+  std::unordered_map<std::uint64_t, std::pair<long, long>> cells;  // key -> range in `sorted`
+  for (long i = 0; i < edges;) {
+    long j = i;
+    while (j < edges && sorted[j].first == sorted[i].first) ++j;
+    cells.emplace(sorted[i].first, std::make_pair(i, j));
+    i = j;
+  }
   const double tolerance = 1e-9 * m_system.radius;
   long found = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : found)
@@ -168,10 +170,11 @@ long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Mat
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
-          const auto key = key_of(c, dx, dy, dz);
-          for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1L)); it != sorted.end() && it->first == key; ++it) {
-            const long f = it->second;
-            if (f <= e || neighbours(e / m_samples, f / m_samples) || !boxes[e].intersects(boxes[f])) continue;
+          const auto cell = cells.find(key_of(c, dx, dy, dz));
+          if (cell == cells.end()) continue;
+          for (long i = cell->second.first; i < cell->second.second; ++i) {
+            const long f = sorted[i].second;
+            if (f <= e || m_system.adjacent(static_cast<int>(e / m_samples), static_cast<int>(f / m_samples)) || !boxes[e].intersects(boxes[f])) continue;
             const auto [ei, ej] = ends(e);
             const auto [fi, fj] = ends(f);
             const Vector3d a0[2] = {p0.col(ei), p0.col(ej)}, a1[2] = {p1.col(ei), p1.col(ej)};

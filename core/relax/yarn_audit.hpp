@@ -8,14 +8,14 @@
 
 namespace skein::relax {
 
-/// The topology auditor, independent of the pull-through guard (it shares no code with it): the yarn
+/// The topology auditor, independent of the pull-through guard (it shares none of its geometry): the yarn
 /// centrelines as polylines through `samples` points per spline segment, and a continuous test of every
 /// pair of polyline edges while all control points move on straight lines from one state to the next.
 class TopologyAuditor {
 public:
   explicit TopologyAuditor(const YarnSystem& system, int samples = 4);
-  /// Centreline crossings during the straight-line move from `before` to `after`: edges of different
-  /// segments that meet (edges of one segment or of neighbouring segments are not compared).
+  /// Centreline crossings during the straight-line move from `before` to `after`: edges that meet, of
+  /// segments that are not one piece of yarn (YarnSystem::adjacent).
   long crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
 
 private:

@@ -75,7 +75,7 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
           const auto k = key(home + Eigen::Vector3i(dx, dy, dz));
           auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(k, -1));
           for (; it != sorted.end() && it->first == k; ++it)
-            if (it->second != s && !system.adjacent(s, it->second) && close_enough(spheres[s], spheres[it->second], reach))
+            if (!system.consecutive(s, it->second) && close_enough(spheres[s], spheres[it->second], reach))
               lists[s].push_back(it->second);
         }
   }
@@ -89,7 +89,7 @@ ContactPairs find_contact_pairs_brute_force(const YarnSystem& system, const Eige
   std::vector<std::vector<int>> lists(n);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
-      if (a != b && !system.adjacent(a, b) && close_enough(spheres[a], spheres[b], reach)) lists[a].push_back(b);
+      if (!system.consecutive(a, b) && close_enough(spheres[a], spheres[b], reach)) lists[a].push_back(b);
   return to_csr(n, lists);
 }
 

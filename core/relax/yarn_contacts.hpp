@@ -15,7 +15,8 @@ struct SegmentSphere {
 std::vector<SegmentSphere> segment_spheres(const YarnSystem& system, const Eigen::Matrix3Xd& points);
 
 /// Candidate contact pairs (Leaf 2018 Algorithm 1's contactPairSet, per segment pair as Yuksel §6.3): two
-/// non-adjacent segments whose bounding spheres are less than 2r + margin apart. Kept both ways, as a CSR
+/// segments that do not share a control-point end and whose bounding spheres are less than 2r + margin apart.
+/// They feel contact (samples less than 2r apart along one yarn excepted) and the pull-through guard watches them. Kept both ways, as a CSR
 /// from each segment to its partners in increasing order, so forces can be gathered per segment without
 /// write conflicts.
 struct ContactPairs {

@@ -56,7 +56,7 @@ void YarnRelaxOptions::validate() const {
   guard.validate();
   shape.validate();
   check_param(contact_margin, "contact_margin", false);
-  check_param(time_step, "time_step", false);
+  check_param(time_step, "time_step");
   check_param(fire_max_step, "fire_max_step", false);
   check_param(tolerance, "tolerance");
   check_param(stall, "stall");
@@ -89,7 +89,7 @@ double yarn_energy(const YarnSystem& system, const YarnParams& params, const Con
   // Contact samples of every segment (Leaf §3.1): position, velocity, and Simpson weight times rest length.
   const int samples = system.sample_start.back() + system.contact_samples.back();
   std::vector<V> pos(samples), vel(samples, zero);
-  std::vector<double> weight(samples);
+  std::vector<double> weight(samples), arc(samples);
 #pragma omp parallel for schedule(static)
   for (int s = 0; s < segments; ++s) {
     V p[4], u[4] = {zero, zero, zero, zero};
@@ -104,6 +104,7 @@ double yarn_energy(const YarnSystem& system, const YarnParams& params, const Con
       pos[system.sample_start[s] + i] = model::combine(w, p);
       vel[system.sample_start[s] + i] = model::combine(w, u);
       weight[system.sample_start[s] + i] = model::simpson_weight<double>(i, n) * system.rest_length[s];
+      arc[system.sample_start[s] + i] = system.arc_start[s] + system.rest_length[s] * i / (n - 1);
     }
   }
   // Per segment: the gradient on its four control points (and the contact damping force), gathered per
@@ -121,9 +122,12 @@ double yarn_energy(const YarnSystem& system, const YarnParams& params, const Con
     double contact_energy = 0;
     for (int k = pairs.start[s]; k < pairs.start[s + 1]; ++k) {
       const int t = pairs.partner[k], other = system.sample_start[t];
+      const int curve = system.segment_curve[s] == system.segment_curve[t] ? system.segment_curve[s] : -1;
       for (int i = 0; i < n; ++i)
         for (int j = 0; j < system.contact_samples[t]; ++j)
-          contact_energy += model::sample_contact(pos[first + i], pos[other + j], vel[first + i], vel[other + j],
+          // Samples of one yarn less than 2r apart along it are neighbours, not a contact (Kaldor's rule in lengths).
+          if (curve < 0 || system.arc_distance(curve, arc[first + i], arc[other + j]) >= 2 * system.radius)
+            contact_energy += model::sample_contact(pos[first + i], pos[other + j], vel[first + i], vel[other + j],
                                                   weight[first + i] * weight[other + j], contact, sample_grad[i], sample_damp[i]);
     }
     // Samples to control points through the basis.
@@ -161,7 +165,7 @@ YarnState initial_state(const YarnSystem& system, const YarnRelaxOptions& option
   YarnState state;
   state.points = system.points;
   state.velocities.setZero(3, system.num_points());
-  state.time_step = options.time_step;
+  state.time_step = options.time_step > 0 ? options.time_step : options.method == YarnMethod::Euler ? 0.002 : 0.02;
   state.fire_alpha = 0.1;
   return state;
 }
@@ -238,7 +242,8 @@ public:
       const double dt = propose(state, grad, damping, limit, delta);
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
       const double scale = m_guard->accept(state.points, delta);
-      if (m_options.audit) state.pull_through_events += m_auditor.crossings(state.points, state.points + delta);
+      const long crossings = m_options.audit ? m_auditor.crossings(state.points, state.points + delta) : 0;
+      state.pull_through_events += crossings;
       state.points += delta;
       // The velocity that matches the move the guard let through.
       if (scale < 1) state.velocities = delta / dt;
@@ -258,6 +263,7 @@ public:
         log.contacts = m_pairs.pairs();
         log.guard_hits = state.guard.finest_hits - before.finest_hits;
         log.held_points = state.guard.held_points - before.held_points;
+        log.crossings = crossings;
         on_step(log);
       }
       const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;

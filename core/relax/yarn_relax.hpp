@@ -23,7 +23,7 @@ struct YarnParams {
   double contact_soft = 0.5;  ///< distance / 2r below which the contact kernel continues linearly
   double k_dt = 0.05;       ///< eq. 12, tangential contact damping
   double k_dn = 0.2;        ///< eq. 12, normal contact damping
-  double k_global = 2;      ///< eq. 11, mass-proportional damping [1/s]
+  double k_global = 20;     ///< eq. 11, mass-proportional damping [1/s] (Euler)
   double density = 1;       ///< mass per rest length [g/mm]
   void validate() const;
 };
@@ -46,7 +46,7 @@ struct YarnRelaxOptions {
   GuardOptions guard;
   ShapeOptions shape;
   double contact_margin = 1.0;  ///< [r]: pairs this far beyond touching are cached; rebuilt after half of it is used
-  double time_step = 0.02;      ///< [s] Euler's step and FIRE's first step
+  double time_step = 0;         ///< [s] Euler's step and FIRE's first step; 0: 0.002 for Euler, 0.02 for FIRE
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
   double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
   double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
@@ -77,6 +77,7 @@ struct YarnStepLog {
   double energy = 0, residual = 0;  ///< residual: |∇E| / |∇E_0|
   double time_step = 0, moved = 0;  ///< moved: the largest distance a point of the yarn moved [mm]
   long contacts = 0, guard_hits = 0, held_points = 0;
+  long crossings = 0;  ///< centreline crossings the auditor found in this step
 };
 
 /// Outcome of a run; not converging is a result, not an exception.

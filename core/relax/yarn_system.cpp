@@ -22,17 +22,30 @@ double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& s
   return length;
 }
 
+double YarnSystem::arc_distance(int c, double a, double b) const {
+  const double along = std::abs(a - b);
+  return closed[c] ? std::min(along, curve_length[c] - along) : along;
+}
+
 bool YarnSystem::adjacent(int a, int b) const {
   if (a == b) return true;
   const int c = segment_curve[a];
   if (c != segment_curve[b]) return false;
   if (a > b) std::swap(a, b);
-  const double between = arc_start[b] - (arc_start[a] + rest_length[a]);  // strictly between a and b
   const double limit = 2 * radius;
-  if (between < limit) return true;
-  if (!closed[c]) return false;
-  const double around = curve_length[c] - (arc_start[b] + rest_length[b]) + arc_start[a];
-  return around < limit;
+  if (arc_start[b] - (arc_start[a] + rest_length[a]) < limit) return true;
+  return closed[c] && curve_length[c] - (arc_start[b] + rest_length[b]) + arc_start[a] < limit;
+}
+
+bool YarnSystem::consecutive(int a, int b) const {
+  if (a == b) return true;
+  const int c = segment_curve[a];
+  if (c != segment_curve[b]) return false;
+  const int gap = std::abs(a - b);
+  if (gap == 1) return true;
+  // A closed curve's last segment meets its first (segments are numbered along each curve).
+  const int count = closed[c] ? curve_start[c + 1] - curve_start[c] : -1;
+  return gap == count - 1;
 }
 
 YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {

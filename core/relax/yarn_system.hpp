@@ -30,9 +30,16 @@ struct YarnSystem {
   int num_points() const { return static_cast<int>(points.cols()); }
   int num_segments() const { return static_cast<int>(segment_points.size()); }
   int num_curves() const { return static_cast<int>(curve_start.size()) - 1; }
-  /// Segments too close along one yarn to be in contact: the same segment, or a rest arc of less than 2r
-  /// between them (Kaldor's |i - j| > 1 rule, in lengths, so short segments in tight bends do not repel).
+  /// One piece of yarn: segments less than 2r apart along one yarn (rest arc strictly between them), so
+  /// that the yarn's tube already overlaps itself there. Passing through each other means nothing for such
+  /// pieces; the pull-through guard and the auditor watch every other pair.
   bool adjacent(int a, int b) const;
+  /// Distance along a yarn between two points at rest arc positions `a` and `b` of curve `c` (the shorter
+  /// way round a closed curve).
+  double arc_distance(int c, double a, double b) const;
+  /// Segments that share a control-point end: the same segment or consecutive ones along a yarn. Every
+  /// other pair can touch and pass through each other (Kaldor's |i - j| > 1).
+  bool consecutive(int a, int b) const;
 };
 
 /// Arc length of one Catmull-Rom segment (p0 p1 p2 p3) [mm].

@@ -190,10 +190,14 @@ TEST(YarnSystem, SegmentsNeighboursAndSampleCounts) {
   const auto system = make_yarn_system(yarn);
   EXPECT_EQ(system.num_segments(), 48);  // closed rings: as many segments as points
   EXPECT_EQ(system.segment_points[0][0], 23);  // wraps around
-  EXPECT_TRUE(system.adjacent(0, 1));
-  EXPECT_TRUE(system.adjacent(0, 23));  // across the closing point
-  EXPECT_FALSE(system.adjacent(0, 12));
-  EXPECT_FALSE(system.adjacent(0, 24));  // other ring
+  EXPECT_TRUE(system.consecutive(0, 1));
+  EXPECT_TRUE(system.consecutive(0, 23));  // across the closing point
+  EXPECT_FALSE(system.consecutive(0, 2));
+  EXPECT_FALSE(system.consecutive(0, 24));  // other ring
+  EXPECT_TRUE(system.adjacent(0, 2));  // 0.78 mm of yarn between them, less than 2r = 1 mm
+  EXPECT_FALSE(system.adjacent(0, 3));
+  EXPECT_TRUE(system.adjacent(0, 22));  // the other way round
+  EXPECT_NEAR(system.arc_distance(0, 0.1, system.curve_length[0] - 0.1), 0.2, 1e-12);  // the short way round
   for (int s = 0; s < system.num_segments(); ++s) {
     EXPECT_EQ(system.contact_samples[s] % 2, 1);
     EXPECT_GT(system.contact_samples[s], system.rest_length[s] / (2 * system.radius));  // Leaf §3.1
