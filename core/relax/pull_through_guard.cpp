@@ -129,12 +129,13 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
   }
   const int n = static_cast<int>(m_pairs.size());
   std::vector<double> new_budget(n, -1.0);
-  std::vector<char> hit(n, 0);
+  std::vector<char> hit(n, 0), retest(n, 1);
   for (int round = 0; m_options.enabled; ++round) {
     const Eigen::VectorXd move = delta.colwise().norm().transpose();
     long tested = 0, skipped = 0, tests = 0, hits = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : tested, skipped, tests, hits)
     for (int i = 0; i < n; ++i) {
+      if (!retest[i]) continue;
       const PairState& pair = m_pairs[i];
       hit[i] = 0;
       new_budget[i] = -1.0;
@@ -164,9 +165,16 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
     if (hits == 0) break;
     m_counters.finest_hits += hits;
     if (round < m_options.max_halvings) {
+      // Every point moves on a straight line, so the halved step is the first half of the same path: pairs
+      // that were clean stay clean and only the hit ones are tested again. Their safe bounds were measured at
+      // the end of the longer step, so they are dropped.
       ++m_counters.halvings;
       scale *= 0.5;
       delta *= 0.5;
+      for (int i = 0; i < n; ++i) {
+        retest[i] = hit[i];
+        if (!hit[i]) new_budget[i] = -1.0;
+      }
       continue;
     }
     // Out of halvings: hold the points of the pairs still hit (and their groups) for this step.
@@ -183,11 +191,19 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
               hold_group[m_groups[p]] = 1;
             }
           }
-    for (int p = 0; p < m_system.num_points(); ++p)
-      if (hold[p] || (m_groups[p] >= 0 && static_cast<size_t>(m_groups[p]) < hold_group.size() && hold_group[m_groups[p]])) {
+    for (int p = 0; p < m_system.num_points(); ++p) {
+      hold[p] = hold[p] || (m_groups[p] >= 0 && static_cast<size_t>(m_groups[p]) < hold_group.size() && hold_group[m_groups[p]]);
+      if (hold[p]) {
         if (delta.col(p).squaredNorm() > 0) ++m_counters.held_points;
         delta.col(p).setZero();
       }
+    }
+    // Pairs with a held point now move differently: test them again.
+    for (int i = 0; i < n; ++i) {
+      retest[i] = 0;
+      for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 4; ++k) retest[i] |= hold[m_system.segment_points[side == 0 ? m_pairs[i].a : m_pairs[i].b][k]];
+    }
   }
   // Commit: travel grows by what each point moves; clean pairs restart their safe bounds from here.
   for (int p = 0; p < m_system.num_points(); ++p) m_travel[p] += delta.col(p).norm();
