@@ -275,6 +275,8 @@ public:
         refresh_contacts(state);
       }
     }
+    // The last state too, so that a run stopped by a cap goes on from where it stopped.
+    if (!m_options.checkpoint.empty() && report.stopped_by != "diverged") write_checkpoint(m_options.checkpoint, fingerprint, state);
     report.steps = state.step;
     report.wall_seconds = seconds_since(started);
     report.residual = state.residual0 > 0 ? residual / state.residual0 : 0;

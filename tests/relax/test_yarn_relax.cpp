@@ -206,15 +206,20 @@ TEST(YarnCheckpoint, ResumeEqualsAnUninterruptedRun) {
   options.checkpoint_every = 25;
   const auto whole = relaxed(system, options, targets);
   ASSERT_EQ(whole.report.steps, 70);
-  // The file holds the state after step 50; go on from there to 70.
+  // Interrupted at step 50 (the cap stands in for a killed job: the last checkpoint is from step 50), then resumed.
+  options.checkpoint = dir / "part.ckp";
+  options.max_steps = 50;
+  relaxed(system, options, targets);
   auto state = read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points());
   EXPECT_EQ(state.step, 50);
-  options.checkpoint = dir / "resumed.ckp";
+  options.max_steps = 70;
   const auto report = make_cpu_yarn_relaxer(system, targets, options)->run(state);
   EXPECT_EQ(report.steps, 70);
   EXPECT_EQ(state.points, whole.state.points);
   EXPECT_EQ(state.velocities, whole.state.velocities);
   EXPECT_EQ(report.guard.pairs_tested, whole.report.guard.pairs_tested);
+  // A run stopped by its cap leaves its last state behind.
+  EXPECT_EQ(read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points()).step, 70);
 }
 
 TEST(YarnCheckpoint, DamagedOrForeignCheckpointsAreRejected) {
