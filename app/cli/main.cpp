@@ -331,7 +331,7 @@ int main(int argc, char** argv) {
   std::string ry_in, ry_out, ry_method = "fire", ry_resume, ry_report, ry_log, ry_png, ry_stitches;
   relax::YarnRelaxOptions ry_options;
   double ry_radius = 0, ry_take_up = 1;
-  bool ry_no_guard = false, ry_no_shape = false, ry_no_audit = false, ry_no_bounds = false;
+  bool ry_no_guard = false, ry_no_shape = false, ry_no_audit = false, ry_no_bounds = false, ry_no_boundary = false, ry_no_patches = false;
   std::string ry_checkpoint;
   ry->add_option("INPUT", ry_in, ".skein project (its stitch faces drive shape preservation) or .bcc yarn")->required();
   ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
@@ -361,6 +361,8 @@ int main(int argc, char** argv) {
   ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
   ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");
   ry->add_flag("--no-shape", ry_no_shape, "no boundary constraints or patch-tracking forces");
+  ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
+  ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
 
   // skein audit
@@ -608,6 +610,8 @@ int main(int argc, char** argv) {
       ry_options.guard.enabled = !ry_no_guard;
       ry_options.guard.safe_bounds = !ry_no_bounds;
       ry_options.audit = !ry_no_audit;
+      ry_options.shape.boundary = !ry_no_boundary;
+      ry_options.shape.patches = !ry_no_patches;
       ry_options.checkpoint = ry_checkpoint;
       if (!ry_checkpoint.empty() && ry_options.checkpoint_every == 0 && ry_options.checkpoint_minutes == 0) ry_options.checkpoint_every = 500;
       ry_options.validate();

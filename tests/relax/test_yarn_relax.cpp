@@ -249,6 +249,17 @@ TEST(YarnCheckpoint, DamagedOrForeignCheckpointsAreRejected) {
   EXPECT_NE(error_for("flipped.ckp", flipped, fingerprint).find("flipped.ckp"), std::string::npos);
 }
 
+TEST(YarnRelax, AStateThatIsNotFiniteIsRolledBackAndReportedAsDiverged) {
+  const auto system = make_yarn_system(skein::testing::linked_rings());
+  YarnRelaxOptions options;
+  auto state = initial_state(system, options);
+  state.points(0, 3) = std::nan("");
+  const auto report = make_cpu_yarn_relaxer(system, {}, options)->run(state);
+  EXPECT_EQ(report.stopped_by, "diverged");
+  EXPECT_GT(report.rollbacks, 0);
+  EXPECT_FALSE(report.converged);
+}
+
 TEST(YarnRelax, OptionsAreValidated) {
   YarnRelaxOptions o;
   o.params.k_contact = 0;
