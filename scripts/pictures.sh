@@ -17,11 +17,12 @@ build/bin/skein-sampler "$tmp" >/dev/null
 "$skein" -q render "$tmp/cable.skein" --yarn --views flat -o "$out/cable-yarn.png"
 "$skein" -q stitch models/swatch.obj --auto-label --stitch-size 40 --stitch-height 33.4 -o "$tmp/close.skein"
 "$skein" -q render "$tmp/close.skein" --yarn --views flat -o "$out/swatch-close-up.png"
-# Yarn relaxation: a 2 x 2 rib swatch, emitted and relaxed; the mitten relaxed (at most five minutes).
-"$skein" -q stitch models/swatch.obj --labels models/swatch.skein -o "$tmp/rib.skein"
+# Yarn relaxation: a close-up of a 2 x 2 rib swatch, emitted and relaxed with 85% of its yarn length; the
+# mitten relaxed (at most five minutes).
+"$skein" -q stitch models/swatch.obj --auto-label --stitch-size 20 --stitch-height 16.7 -o "$tmp/rib.skein"
 "$skein" -q edit "$tmp/rib.skein" --fill rib2x2 -o "$tmp/rib.skein"
 "$skein" -q render "$tmp/rib.skein" --yarn --views flat -o "$out/swatch-rib-emitted.png"
-"$skein" -q relax-yarn "$tmp/rib.skein" -o "$tmp/rib.bcc" --png "$out/swatch-rib-relaxed.png"
+"$skein" -q relax-yarn "$tmp/rib.skein" -o "$tmp/rib.bcc" --take-up 0.85 --png "$out/swatch-rib-relaxed.png"
 "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
 "$skein" -q relax-yarn "$tmp/mitten.skein" -o "$tmp/mitten.bcc" --no-audit --max-seconds 300 --png "$out/mitten-yarn-relaxed.png"
 echo "wrote $(ls $out | tr '\n' ' ')"
