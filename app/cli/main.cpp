@@ -349,6 +349,7 @@ int main(int argc, char** argv) {
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
   ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
   ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
+  ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
   ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
@@ -370,6 +371,8 @@ int main(int argc, char** argv) {
   std::string audit_before, audit_after;
   audit->add_option("BEFORE", audit_before, "yarn before (.bcc)")->required();
   audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
+  int audit_samples = 4;
+  audit->add_option("--samples", audit_samples, "polyline points per spline segment for the crossing test")->capture_default_str()->check(CLI::Range(1, 64));
 
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
@@ -684,7 +687,8 @@ int main(int argc, char** argv) {
       for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
       double largest = 0;
       for (int p = 0; p < system.num_points(); ++p) largest = std::max(largest, (q1.col(p) - system.points.col(p)).norm());
-      const long crossings = relax::TopologyAuditor(system).crossings(system.points, q1);
+      const auto crossing_list = relax::TopologyAuditor(system, audit_samples).crossings(system.points, q1);
+      const long crossings = static_cast<long>(crossing_list.size());
       const auto links_before = relax::linking_numbers(before), links_after = relax::linking_numbers(after);
       std::map<std::pair<int, int>, long> lk0, lk1;
       for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
@@ -692,6 +696,12 @@ int main(int argc, char** argv) {
       std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
                 << system.num_points() << "\nlargest control-point move: " << largest << " mm\n"
                 << "centreline crossings on the straight path between the two states: " << crossings << "\n";
+      for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {
+        const auto& c = crossing_list[i];
+        std::cout << "  segments " << c.segment_a << " (points " << system.segment_points[c.segment_a][1] << "-" << system.segment_points[c.segment_a][2]
+                  << ") and " << c.segment_b << " (points " << system.segment_points[c.segment_b][1] << "-" << system.segment_points[c.segment_b][2]
+                  << ") near (" << c.where.x() << ", " << c.where.y() << ", " << c.where.z() << ")\n";
+      }
       long changed = 0;
       std::set<std::pair<int, int>> keys;
       for (const auto& [k, v] : lk0) keys.insert(k);

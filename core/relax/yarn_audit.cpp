@@ -4,7 +4,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <unordered_map>
+
+#include <omp.h>
 
 #include <Eigen/Geometry>
 
@@ -111,24 +114,49 @@ bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3
 
 TopologyAuditor::TopologyAuditor(const YarnSystem& system, int samples) : m_system(system), m_samples(samples) {}
 
+Vector3d TopologyAuditor::curve_point(const Eigen::Matrix3Xd& points, int segment, double t) const {
+  // Catmull-Rom basis, written out here so that the auditor shares nothing with the relaxer.
+  const auto& sp = m_system.segment_points[segment];
+  const double t2 = t * t, t3 = t2 * t;
+  return 0.5 * ((-t3 + 2 * t2 - t) * points.col(sp[0]) + (3 * t3 - 5 * t2 + 2) * points.col(sp[1]) + (-3 * t3 + 4 * t2 + t) * points.col(sp[2]) +
+                (t3 - t2) * points.col(sp[3]));
+}
+
 Eigen::Matrix3Xd TopologyAuditor::polyline_points(const Eigen::Matrix3Xd& points) const {
   const int per = m_samples + 1;
   Eigen::Matrix3Xd out(3, static_cast<long>(m_system.num_segments()) * per);
 #pragma omp parallel for schedule(static)
-  for (int s = 0; s < m_system.num_segments(); ++s) {
-    const auto& sp = m_system.segment_points[s];
-    for (int k = 0; k < per; ++k) {
-      // Catmull-Rom basis, written out here so that the auditor shares nothing with the relaxer.
-      const double t = static_cast<double>(k) / m_samples, t2 = t * t, t3 = t2 * t;
-      out.col(static_cast<long>(s) * per + k) =
-          0.5 * ((-t3 + 2 * t2 - t) * points.col(sp[0]) + (3 * t3 - 5 * t2 + 2) * points.col(sp[1]) +
-                 (-3 * t3 + 4 * t2 + t) * points.col(sp[2]) + (t3 - t2) * points.col(sp[3]));
-    }
-  }
+  for (int s = 0; s < m_system.num_segments(); ++s)
+    for (int k = 0; k < per; ++k) out.col(static_cast<long>(s) * per + k) = curve_point(points, s, static_cast<double>(k) / m_samples);
   return out;
 }
 
-long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
+bool TopologyAuditor::segments_meet_finely(int a, int b, const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, double tolerance) const {
+  constexpr int kFine = 64;
+  std::array<Vector3d, kFine + 1> a0, a1, b0, b1;
+  for (int k = 0; k <= kFine; ++k) {
+    const double t = static_cast<double>(k) / kFine;
+    a0[k] = curve_point(before, a, t);
+    a1[k] = curve_point(after, a, t);
+    b0[k] = curve_point(before, b, t);
+    b1[k] = curve_point(after, b, t);
+  }
+  const auto box = [](const Vector3d& p, const Vector3d& q, const Vector3d& r, const Vector3d& s) {
+    Eigen::AlignedBox3d out(p);
+    return out.extend(q).extend(r).extend(s);
+  };
+  for (int i = 0; i < kFine; ++i) {
+    const auto box_a = box(a0[i], a0[i + 1], a1[i], a1[i + 1]);
+    for (int j = 0; j < kFine; ++j) {
+      if (!box_a.intersects(box(b0[j], b0[j + 1], b1[j], b1[j + 1]))) continue;
+      const Vector3d ea0[2] = {a0[i], a0[i + 1]}, ea1[2] = {a1[i], a1[i + 1]}, eb0[2] = {b0[j], b0[j + 1]}, eb1[2] = {b1[j], b1[j + 1]};
+      if (edges_meet_during(ea0, ea1, eb0, eb1, tolerance)) return true;
+    }
+  }
+  return false;
+}
+
+std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
   const Eigen::Matrix3Xd p0 = polyline_points(before), p1 = polyline_points(after);
   const int per = m_samples + 1;
   const long edges = static_cast<long>(m_system.num_segments()) * m_samples;
@@ -163,8 +191,8 @@ long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Mat
     i = j;
   }
   const double tolerance = 1e-9 * m_system.radius;
-  long found = 0;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : found)
+  std::vector<std::vector<Crossing>> found(edges > 0 ? omp_get_max_threads() : 0);
+#pragma omp parallel for schedule(dynamic, 256)
   for (long e = 0; e < edges; ++e) {
     const Vector3d c = boxes[e].center();
     for (int dx = -1; dx <= 1; ++dx)
@@ -179,11 +207,20 @@ long TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Mat
             const auto [fi, fj] = ends(f);
             const Vector3d a0[2] = {p0.col(ei), p0.col(ej)}, a1[2] = {p1.col(ei), p1.col(ej)};
             const Vector3d b0[2] = {p0.col(fi), p0.col(fj)}, b1[2] = {p1.col(fi), p1.col(fj)};
-            if (edges_meet_during(a0, a1, b0, b1, tolerance)) ++found;
+            // A meeting of the coarse polylines is confirmed on 64 points per segment: where two centrelines
+            // come closer than the coarse polylines' own error, the coarse edges can cross when the curves do not.
+            const int sa = static_cast<int>(e / m_samples), sb = static_cast<int>(f / m_samples);
+            if (edges_meet_during(a0, a1, b0, b1, tolerance) && segments_meet_finely(sa, sb, before, after, tolerance))
+              found[omp_get_thread_num()].push_back({sa, sb, 0.5 * (a0[0] + b0[0])});
           }
         }
   }
-  return found;
+  std::vector<Crossing> all;
+  for (const auto& part : found) all.insert(all.end(), part.begin(), part.end());
+  std::sort(all.begin(), all.end(), [](const Crossing& x, const Crossing& y) {
+    return std::tie(x.segment_a, x.segment_b) < std::tie(y.segment_a, y.segment_b);
+  });
+  return all;
 }
 
 double linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {

@@ -10,16 +10,25 @@ namespace skein::relax {
 
 /// The topology auditor, independent of the pull-through guard (it shares none of its geometry): the yarn
 /// centrelines as polylines through `samples` points per spline segment, and a continuous test of every
-/// pair of polyline edges while all control points move on straight lines from one state to the next.
+/// pair of polyline edges while all control points move on straight lines from one state to the next;
+/// a meeting is confirmed on polylines of 64 points per segment for the two segments involved.
 class TopologyAuditor {
 public:
   explicit TopologyAuditor(const YarnSystem& system, int samples = 4);
+  /// A centreline crossing: two segments whose polyline edges met during the move, and where (at the start).
+  struct Crossing {
+    int segment_a = 0, segment_b = 0;
+    Eigen::Vector3d where = Eigen::Vector3d::Zero();
+  };
   /// Centreline crossings during the straight-line move from `before` to `after`: edges that meet, of
   /// segments that are not one piece of yarn (YarnSystem::adjacent).
-  long crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
+  std::vector<Crossing> crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
 
 private:
+  Eigen::Vector3d curve_point(const Eigen::Matrix3Xd& points, int segment, double t) const;
   Eigen::Matrix3Xd polyline_points(const Eigen::Matrix3Xd& points) const;
+  /// The same test on 64 points per segment, for one pair of segments.
+  bool segments_meet_finely(int a, int b, const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, double tolerance) const;
   const YarnSystem& m_system;
   int m_samples;
 };

@@ -242,7 +242,7 @@ public:
       const double dt = propose(state, grad, damping, limit, delta);
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
       const double scale = m_guard->accept(state.points, delta);
-      const long crossings = m_options.audit ? m_auditor.crossings(state.points, state.points + delta) : 0;
+      const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + delta).size()) : 0;
       state.pull_through_events += crossings;
       state.points += delta;
       // The velocity that matches the move the guard let through.
