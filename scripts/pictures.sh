@@ -22,7 +22,7 @@ build/bin/skein-sampler "$tmp" >/dev/null
 "$skein" -q stitch models/swatch.obj --auto-label --stitch-size 20 --stitch-height 16.7 -o "$tmp/rib.skein"
 "$skein" -q edit "$tmp/rib.skein" --fill rib2x2 -o "$tmp/rib.skein"
 "$skein" -q render "$tmp/rib.skein" --yarn --views flat -o "$out/swatch-rib-emitted.png"
-"$skein" -q relax-yarn "$tmp/rib.skein" -o "$tmp/rib.bcc" --take-up 0.85 --png "$out/swatch-rib-relaxed.png"
+"$skein" -q relax-yarn "$tmp/rib.skein" -o "$tmp/rib.bcc" --take-up 0.85 --png "$out/swatch-rib-relaxed.png" --views flat
 "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
-"$skein" -q relax-yarn "$tmp/mitten.skein" -o "$tmp/mitten.bcc" --no-audit --max-seconds 300 --png "$out/mitten-yarn-relaxed.png"
+"$skein" -q relax-yarn "$tmp/mitten.skein" -o "$tmp/mitten.bcc" --no-audit --max-seconds 300 --png "$out/mitten-yarn-relaxed.png" --views flat
 echo "wrote $(ls $out | tr '\n' ' ')"

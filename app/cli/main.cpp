@@ -344,6 +344,9 @@ int main(int argc, char** argv) {
   ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
   ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points, crossings");
   ry->add_option("--png", ry_png, "picture of the relaxed yarn");
+  std::string ry_views = "garment";
+  ry->add_option("--views", ry_views, "garment (three-quarter front, back-side) or flat (front, back) for --png")
+      ->check(CLI::IsMember({"garment", "flat"}))->capture_default_str();
   ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
@@ -675,7 +678,7 @@ int main(int argc, char** argv) {
                     {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
                     {"yarn", yarn_json(yarn_out_curves)}},
                    ry_report);
-      if (!ry_png.empty()) render_yarn_tubes(yarn_out_curves, ry_png, render::YarnColor::StitchType, "flat");
+      if (!ry_png.empty()) render_yarn_tubes(yarn_out_curves, ry_png, render::YarnColor::StitchType, ry_views);
       return report.stopped_by == "diverged" ? 1 : 0;
     }
     if (*audit) {
