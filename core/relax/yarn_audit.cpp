@@ -7,44 +7,14 @@
 #include <tuple>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
 #include <omp.h>
 
-#include <Eigen/Geometry>
+#include "relax/segment_distance.hpp"
 
 namespace skein::relax {
-namespace {
 
 using Eigen::Vector3d;
-
-/// Closest distance between the segments p0-p1 and q0-q1 (clamped closest points, Ericson 2005 §5.1.9).
-double segment_distance(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0, const Vector3d& q1) {
-  const Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 1e-300 && e <= 1e-300) return r.norm();
-  if (a <= 1e-300) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 1e-300) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return (p0 + s * d1 - (q0 + t * d2)).norm();
-}
-
-}  // namespace
 
 bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3d b0[2], const Vector3d b1[2], double tolerance) {
   const auto at = [&](double t, Vector3d out[4]) {

@@ -13,6 +13,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "relax/segment_distance.hpp"
 
 namespace skein::relax {
 namespace {
@@ -35,29 +36,6 @@ static_assert(sizeof(BccHeader) == 64, "the .bcc header is 64 bytes");
 Eigen::Vector3d catmull_rom(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, const Eigen::Vector3d& p3, double t) {
   const double t2 = t * t, t3 = t2 * t;
   return 0.5 * ((2 * p1) + (-p0 + p2) * t + (2 * p0 - 5 * p1 + 4 * p2 - p3) * t2 + (-p0 + 3 * p1 - 3 * p2 + p3) * t3);
-}
-
-double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
-  // Closest points of two segments (Ericson, Real-Time Collision Detection §5.1.9).
-  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 1e-30 && e <= 1e-30) return r.norm();
-  if (a <= 1e-30) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 1e-30) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 1e-30 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
-      else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
-    }
-  }
-  return (p0 + d1 * s - (q0 + d2 * t)).norm();
 }
 
 }  // namespace
