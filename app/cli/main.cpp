@@ -352,6 +352,7 @@ int main(int argc, char** argv) {
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
   ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
   ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
+  ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
   ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
@@ -624,6 +625,7 @@ int main(int argc, char** argv) {
       Stopwatch t;
       mesh::YarnCurves yarn;
       relax::ShapeTargets targets;
+      if (!is_bcc(ry_in) && !is_project(ry_in)) throw Error(ry_in, "", "relax-yarn reads a .skein project or .bcc yarn");
       if (is_bcc(ry_in)) {
         yarn = relax::read_bcc(ry_in);
         if (!ry_no_shape) spdlog::info("{} is bare yarn: no stitch faces, so no shape preservation", ry_in);

@@ -198,6 +198,9 @@ TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("bad.ckp"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.bcc"));
+  r = run_skein("relax-yarn " + kModels + "/tube.obj -o " + (dir / "out.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("reads a .skein project or .bcc yarn"), std::string::npos) << r.output;
   ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + (dir / "a.bcc").string()).status, 0);
   ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + (dir / "s.skein").string()).status, 0);
   ASSERT_EQ(run_skein("yarn " + (dir / "s.skein").string() + " -o " + (dir / "b.bcc").string()).status, 0);
