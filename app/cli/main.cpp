@@ -656,7 +656,7 @@ int main(int argc, char** argv) {
       const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
         if (log)
           *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-               << s.guard_hits << ',' << s.held_points << ',' << s.crossings << '\n';
+               << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
         const double by_steps = static_cast<double>(s.step) / std::max<long>(ry_options.max_steps, 1);
         const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
         char text[160];
