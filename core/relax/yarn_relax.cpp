@@ -297,9 +297,12 @@ private:
     m_moved_since_rebuild = 0;
   }
 
-  /// Energy and its gradient (yarn model and patch tracking) and the damping forces at `state`.
+  /// Energy and its gradient (yarn model and patch tracking) at `state`, and for Euler the damping forces
+  /// (FIRE steers its own velocities and takes none).
   double forces(const YarnState& state, Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& damping) {
-    double energy = yarn_energy(m_system, m_options.params, m_pairs, state.points, grad, &state.velocities, &damping);
+    const bool damped = m_options.method == YarnMethod::Euler;
+    double energy = yarn_energy(m_system, m_options.params, m_pairs, state.points, grad, damped ? &state.velocities : nullptr,
+                                damped ? &damping : nullptr);
     if (!m_targets.patches.empty()) energy += patch_energy(m_targets, m_options.shape, m_system.radius, state.points, grad);
     return energy;
   }
@@ -307,12 +310,10 @@ private:
   /// The integrator's proposed move into `delta`; returns the time step it used.
   double propose(YarnState& state, const Eigen::Matrix3Xd& grad, const Eigen::Matrix3Xd& damping, double limit, Eigen::Matrix3Xd& delta) {
     const int n = m_system.num_points();
-    // Euler damps with eqs. 11-12; FIRE steers its own velocities and takes no damping.
-    const bool damped = m_options.method == YarnMethod::Euler;
     Eigen::Matrix3Xd accel(3, n);
-#pragma omp parallel for schedule(static)
-    for (int p = 0; p < n; ++p) accel.col(p) = ((damped ? Eigen::Vector3d(damping.col(p)) : Eigen::Vector3d::Zero()) - grad.col(p)) * m_inv_mass[p];
     if (m_options.method == YarnMethod::Euler) {
+#pragma omp parallel for schedule(static)
+      for (int p = 0; p < n; ++p) accel.col(p) = (damping.col(p) - grad.col(p)) * m_inv_mass[p];
       // Leaf eq. 2: the largest step after which no contact sample moves more than ε r.
       double dt = state.time_step;
 #pragma omp parallel for schedule(static) reduction(min : dt)
@@ -333,6 +334,8 @@ private:
     }
     // FIRE (Bitzek et al. 2006) on the forces, semi-implicit.
     const Eigen::Matrix3Xd force = -grad;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p) accel.col(p) = force.col(p) * m_inv_mass[p];
     const double power = ordered_sum(n, [&](long p) { return force.col(p).dot(state.velocities.col(p)); });
     if (power > 0) {
       const double vnorm = std::sqrt(ordered_sum(n, [&](long p) { return state.velocities.col(p).squaredNorm(); }));
