@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "relax/yarn_model.hpp"
+#include "relax/guard_model.hpp"
 
 namespace skein::relax {
 namespace {
@@ -13,48 +13,11 @@ namespace {
 using V = model::Vec3<double>;
 V vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-/// A bounding sphere of a segment piece at the start and at the end of the step.
-struct SweptSphere {
-  V c0, c1;
-  double r0 = 0, r1 = 0;
-};
-
-SweptSphere sphere_of(const V p0[4], const V p1[4], double s0, double s1) {
-  SweptSphere out;
-  V b[4];
-  const auto fit = [&](const V p[4], V& c, double& r) {
-    model::piece_bezier(p, s0, s1, b);
-    c = (b[0] + b[1] + b[2] + b[3]) * 0.25;
-    r = 0;
-    for (const auto& q : b) r = std::max(r, model::norm(q - c));
-  };
-  fit(p0, out.c0, out.r0);
-  fit(p1, out.c1, out.r1);
-  return out;
-}
-
-/// Do the two spheres, centres and radii moving linearly over t in [0, 1], meet? (Yuksel §6.3: a quadratic
-/// in t.) Every point of a piece moves linearly, so the linear blend of the end radii bounds the piece at t.
-bool spheres_meet(const SweptSphere& a, const SweptSphere& b, double& end_gap) {
-  const V d0 = b.c0 - a.c0, e = (b.c1 - a.c1) - d0;
-  const double s0 = a.r0 + b.r0, f = (a.r1 + b.r1) - s0;
-  end_gap = model::norm(b.c1 - a.c1) - (a.r1 + b.r1);
-  // g(t) = |d0 + t e|^2 - (s0 + t f)^2 <= 0 somewhere in [0, 1]?
-  const double qa = model::dot(e, e) - f * f, qb = 2 * (model::dot(d0, e) - s0 * f), qc = model::dot(d0, d0) - s0 * s0;
-  const auto g = [&](double t) { return (qa * t + qb) * t + qc; };
-  if (g(0) <= 0 || g(1) <= 0) return true;
-  if (qa > 0) {
-    const double t = -qb / (2 * qa);
-    if (t > 0 && t < 1 && g(t) <= 0) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 void GuardOptions::validate() const {
   if (!(max_move > 0 && max_move <= 10)) throw Error("", "guard", "the movement limit ε must be in (0, 10], found " + std::to_string(max_move));
-  if (max_depth < 0 || max_depth > 20) throw Error("", "guard", "the refinement depth must be in 0..20, found " + std::to_string(max_depth));
+  if (max_depth < 0 || max_depth > model::kMaxGuardDepth) throw Error("", "guard", "the refinement depth must be in 0.." + std::to_string(model::kMaxGuardDepth) + ", found " + std::to_string(max_depth));
   if (max_halvings < 0 || max_halvings > 30) throw Error("", "guard", "the step halvings must be in 0..30, found " + std::to_string(max_halvings));
 }
 
@@ -81,30 +44,7 @@ bool PullThroughGuard::pieces_meet(const PairState& pair, const Eigen::Matrix3Xd
     b0[k] = vec(points.col(pb));
     b1[k] = b0[k] + vec(delta.col(pb));
   }
-  struct Item {
-    double a_lo, a_hi, b_lo, b_hi;
-    int depth;
-  };
-  Item stack[4 * 21 + 4];
-  int top = 0;
-  stack[top++] = {0, 1, 0, 1, 0};
-  gap = INFINITY;
-  while (top > 0) {
-    const Item it = stack[--top];
-    double end_gap;
-    ++tests;
-    if (!spheres_meet(sphere_of(a0, a1, it.a_lo, it.a_hi), sphere_of(b0, b1, it.b_lo, it.b_hi), end_gap)) {
-      gap = std::min(gap, end_gap);
-      continue;
-    }
-    if (it.depth == m_options.max_depth) return true;
-    const double am = 0.5 * (it.a_lo + it.a_hi), bm = 0.5 * (it.b_lo + it.b_hi);
-    stack[top++] = {it.a_lo, am, it.b_lo, bm, it.depth + 1};
-    stack[top++] = {it.a_lo, am, bm, it.b_hi, it.depth + 1};
-    stack[top++] = {am, it.a_hi, it.b_lo, bm, it.depth + 1};
-    stack[top++] = {am, it.a_hi, bm, it.b_hi, it.depth + 1};
-  }
-  return false;
+  return model::pieces_meet(a0, a1, b0, b1, m_options.max_depth, gap, tests);
 }
 
 bool PullThroughGuard::skip(const PairState& pair, const Eigen::VectorXd& move) const {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <numeric>
 
-#include "relax/yarn_model.hpp"
+#include "relax/guard_model.hpp"
 
 namespace skein::relax {
 namespace {
@@ -35,12 +35,10 @@ std::vector<SegmentSphere> segment_spheres(const YarnSystem& system, const Eigen
   std::vector<SegmentSphere> spheres(system.num_segments());
 #pragma omp parallel for schedule(static)
   for (int seg = 0; seg < system.num_segments(); ++seg) {
-    model::Vec3<double> p[4], b[4];
+    model::Vec3<double> p[4], c;
     for (int k = 0; k < 4; ++k) p[k] = vec(points.col(system.segment_points[seg][k]));
-    model::piece_bezier(p, 0.0, 1.0, b);
-    const auto c = (b[0] + b[1] + b[2] + b[3]) * 0.25;
-    double r = 0;
-    for (const auto& q : b) r = std::max(r, model::norm(q - c));
+    double r;
+    model::bezier_sphere(p, 0.0, 1.0, c, r);
     spheres[seg] = {Eigen::Vector3d(c.x, c.y, c.z), r};
   }
   return spheres;

@@ -182,4 +182,39 @@ template <class T> SKEIN_HD T step_bound(T u, T acc, T limit) {
   return (-u + std::sqrt(u * u + 4 * limit * acc)) / (2 * acc);
 }
 
+/// Leaf 2018 eq. 5: converged when the residual |grad E| is small against the first one (eps1) and no longer
+/// changing from the previous step (eps2). Never at step 0.
+template <class T> SKEIN_HD bool converged(long step, T residual, T residual0, T residual_prev, T eps1, T eps2) {
+  if (step <= 0 || !(residual0 > T(0))) return false;
+  const T prev = residual_prev > T(1e-30) ? residual_prev : T(1e-30);
+  const T change = residual / prev - T(1);
+  return residual / residual0 <= eps1 && (change < 0 ? -change : change) <= eps2;
+}
+
+/// FIRE's controller (Bitzek et al. 2006) between steps: its step, mixing factor and count of steps downhill.
+template <class T>
+struct FireControl {
+  T time_step, alpha;
+  long positive;
+};
+
+/// One FIRE decision from the power P = F.v and the norms |v| and |F|: the new velocity is
+/// keep v + mix F before this step's acceleration. Downhill, v turns toward F and after five such steps the
+/// step grows (to at most max_step) and alpha shrinks; uphill, v stops, the step halves and alpha resets.
+template <class T> SKEIN_HD void fire_control(T power, T vnorm, T fnorm, T max_step, FireControl<T>& c, T& keep, T& mix) {
+  if (power > 0) {
+    keep = fnorm > 0 ? 1 - c.alpha : T(1);
+    mix = fnorm > 0 ? c.alpha * vnorm / fnorm : T(0);
+    if (++c.positive > 5) {
+      c.time_step = c.time_step * T(1.1) < max_step ? c.time_step * T(1.1) : max_step;
+      c.alpha *= T(0.99);
+    }
+    return;
+  }
+  keep = mix = 0;
+  c.time_step *= T(0.5);
+  c.alpha = T(0.1);
+  c.positive = 0;
+}
+
 }  // namespace skein::relax::model

@@ -11,6 +11,7 @@
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_model.hpp"
+#include "relax/yarn_segment.hpp"
 
 namespace skein::relax {
 namespace {
@@ -86,60 +87,25 @@ double yarn_energy(const YarnSystem& system, const YarnParams& params, const Con
   const model::ContactParams<double> contact{params.k_contact, velocities ? params.k_dt : 0.0, velocities ? params.k_dn : 0.0, system.radius,
                                              params.contact_soft};
   const V zero{0, 0, 0};
-  // Contact samples of every segment (Leaf §3.1): position, velocity, and Simpson weight times rest length.
+  const auto view = segment_view(system);
+  const auto point = [&](int p) { return vec(points.col(p)); };
+  const auto velocity = [&](int p) { return velocities ? vec(velocities->col(p)) : zero; };
+  // Contact samples of every segment (Leaf §3.1), then per segment the gradient on its four control points
+  // (and the contact damping force), gathered per point afterwards (Leaf §3.2 stencils): no two threads
+  // write the same place.
   const int samples = system.sample_start.back() + system.contact_samples.back();
-  std::vector<V> pos(samples), vel(samples, zero);
+  std::vector<V> pos(samples), vel(samples);
   std::vector<double> weight(samples), arc(samples);
+  const model::SampleView<double> sample_view{pos.data(), vel.data(), weight.data(), arc.data()};
 #pragma omp parallel for schedule(static)
-  for (int s = 0; s < segments; ++s) {
-    V p[4], u[4] = {zero, zero, zero, zero};
-    for (int k = 0; k < 4; ++k) {
-      p[k] = vec(points.col(system.segment_points[s][k]));
-      if (velocities) u[k] = vec(velocities->col(system.segment_points[s][k]));
-    }
-    const int n = system.contact_samples[s];
-    for (int i = 0; i < n; ++i) {
-      double w[4];
-      model::basis(static_cast<double>(i) / (n - 1), w);
-      pos[system.sample_start[s] + i] = model::combine(w, p);
-      vel[system.sample_start[s] + i] = model::combine(w, u);
-      weight[system.sample_start[s] + i] = model::simpson_weight<double>(i, n) * system.rest_length[s];
-      arc[system.sample_start[s] + i] = system.arc_start[s] + system.rest_length[s] * i / (n - 1);
-    }
-  }
-  // Per segment: the gradient on its four control points (and the contact damping force), gathered per
-  // point afterwards (Leaf §3.2 stencils): no two threads write the same place.
+  for (int s = 0; s < segments; ++s) model::segment_samples(view, s, point, velocity, sample_view);
   std::vector<std::array<V, 4>> seg_grad(segments), seg_damp(segments);
   std::vector<double> seg_energy(segments);
+  const model::PairView pair_view{pairs.start.data(), pairs.partner.data()};
 #pragma omp parallel for schedule(dynamic, 256)
   for (int s = 0; s < segments; ++s) {
-    V p[4], g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
-    for (int k = 0; k < 4; ++k) p[k] = vec(points.col(system.segment_points[s][k]));
-    double e = model::segment_intrinsic(p, system.rest_length[s], intrinsic, g);
-    const int first = system.sample_start[s], n = system.contact_samples[s];
-    V sample_grad[64], sample_damp[64];  // make_yarn_system keeps n far below this
-    for (int i = 0; i < n; ++i) sample_grad[i] = sample_damp[i] = zero;
-    double contact_energy = 0;
-    for (int k = pairs.start[s]; k < pairs.start[s + 1]; ++k) {
-      const int t = pairs.partner[k], other = system.sample_start[t];
-      const int curve = system.segment_curve[s] == system.segment_curve[t] ? system.segment_curve[s] : -1;
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < system.contact_samples[t]; ++j)
-          // Samples of one yarn less than 2r apart along it are neighbours, not a contact (Kaldor's rule in lengths).
-          if (curve < 0 || system.arc_distance(curve, arc[first + i], arc[other + j]) >= 2 * system.radius)
-            contact_energy += model::sample_contact(pos[first + i], pos[other + j], vel[first + i], vel[other + j],
-                                                  weight[first + i] * weight[other + j], contact, sample_grad[i], sample_damp[i]);
-    }
-    // Samples to control points through the basis.
-    for (int i = 0; i < n; ++i) {
-      double w[4];
-      model::basis(static_cast<double>(i) / (n - 1), w);
-      for (int k = 0; k < 4; ++k) {
-        g[k] += sample_grad[i] * w[k];
-        d[k] += sample_damp[i] * w[k];
-      }
-    }
-    seg_energy[s] = e + 0.5 * contact_energy;  // each pair is seen from both sides
+    V g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
+    seg_energy[s] = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
     for (int k = 0; k < 4; ++k) {
       seg_grad[s][k] = g[k];
       seg_damp[s][k] = d[k];
@@ -220,9 +186,7 @@ public:
       good_velocities = state.velocities;
       if (state.step == 0 || state.residual0 == 0) state.residual0 = residual;
       const double relative = residual / state.residual0;
-      // Leaf eq. 5: small against the start, and no longer changing.
-      const bool converged = state.step > 0 && relative <= m_options.tolerance &&
-                             std::abs(residual / std::max(state.residual_prev, 1e-300) - 1) <= m_options.stall;
+      const bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
       state.residual_prev = residual;
       if (converged) {
         report.converged = true;
@@ -337,20 +301,15 @@ private:
 #pragma omp parallel for schedule(static)
     for (int p = 0; p < n; ++p) accel.col(p) = force.col(p) * m_inv_mass[p];
     const double power = ordered_sum(n, [&](long p) { return force.col(p).dot(state.velocities.col(p)); });
-    if (power > 0) {
-      const double vnorm = std::sqrt(ordered_sum(n, [&](long p) { return state.velocities.col(p).squaredNorm(); }));
-      const double fnorm = std::sqrt(ordered_sum(n, [&](long p) { return force.col(p).squaredNorm(); }));
-      if (fnorm > 0) state.velocities = (1 - state.fire_alpha) * state.velocities + state.fire_alpha * vnorm / fnorm * force;
-      if (++state.fire_positive > 5) {
-        state.time_step = std::min(state.time_step * 1.1, m_options.fire_max_step);
-        state.fire_alpha *= 0.99;
-      }
-    } else {
-      state.velocities.setZero();
-      state.time_step *= 0.5;
-      state.fire_alpha = 0.1;
-      state.fire_positive = 0;
-    }
+    const double vnorm = std::sqrt(ordered_sum(n, [&](long p) { return state.velocities.col(p).squaredNorm(); }));
+    const double fnorm = std::sqrt(ordered_sum(n, [&](long p) { return force.col(p).squaredNorm(); }));
+    model::FireControl<double> control{state.time_step, state.fire_alpha, state.fire_positive};
+    double keep, mix;
+    model::fire_control(power, vnorm, fnorm, m_options.fire_max_step, control, keep, mix);
+    state.time_step = control.time_step;
+    state.fire_alpha = control.alpha;
+    state.fire_positive = control.positive;
+    state.velocities = keep * state.velocities + mix * force;
     const double dt = state.time_step;
     state.velocities += dt * accel;
     delta = dt * state.velocities;

@@ -22,31 +22,9 @@ double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& s
   return length;
 }
 
-double YarnSystem::arc_distance(int c, double a, double b) const {
-  const double along = std::abs(a - b);
-  return closed[c] ? std::min(along, curve_length[c] - along) : along;
-}
+bool YarnSystem::adjacent(int a, int b) const { return model::adjacent(segment_view(*this), a, b); }
 
-bool YarnSystem::adjacent(int a, int b) const {
-  if (a == b) return true;
-  const int c = segment_curve[a];
-  if (c != segment_curve[b]) return false;
-  if (a > b) std::swap(a, b);
-  const double limit = 2 * radius;
-  if (arc_start[b] - (arc_start[a] + rest_length[a]) < limit) return true;
-  return closed[c] && curve_length[c] - (arc_start[b] + rest_length[b]) + arc_start[a] < limit;
-}
-
-bool YarnSystem::consecutive(int a, int b) const {
-  if (a == b) return true;
-  const int c = segment_curve[a];
-  if (c != segment_curve[b]) return false;
-  const int gap = std::abs(a - b);
-  if (gap == 1) return true;
-  // A closed curve's last segment meets its first (segments are numbered along each curve).
-  const int count = closed[c] ? curve_start[c + 1] - curve_start[c] : -1;
-  return gap == count - 1;
-}
+bool YarnSystem::consecutive(int a, int b) const { return model::consecutive(segment_view(*this), a, b); }
 
 YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
   if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
@@ -87,7 +65,7 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
   for (double l : s.rest_length) {
     int n = static_cast<int>(std::floor(l / (2 * s.radius))) + 1;
     if (n % 2 == 0) ++n;
-    if (n > 63)
+    if (n > model::kMaxContactSamples)
       throw Error("", "segment " + std::to_string(s.contact_samples.size()),
                   "a segment " + std::to_string(l) + " mm long, more than 60 yarn diameters: resample the yarn more finely");
     s.sample_start.push_back(s.sample_start.empty() ? 0 : s.sample_start.back() + s.contact_samples.back());
@@ -113,16 +91,17 @@ mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix
   return out;
 }
 
+model::SegmentView<double> segment_view(const YarnSystem& system) {
+  return {system.segment_points.front().data(), system.segment_curve.data(), system.curve_start.data(), system.rest_length.data(), system.arc_start.data(),
+          system.curve_length.data(), system.closed.data(), system.contact_samples.data(), system.sample_start.data(), system.radius};
+}
+
 double largest_sample_move(const YarnSystem& system, const Eigen::Matrix3Xd& delta) {
+  const int* segment_points = system.segment_points.front().data();
+  const auto move = [&](int p) { return model::Vec3<double>{delta(0, p), delta(1, p), delta(2, p)}; };
   double largest = 0;
 #pragma omp parallel for reduction(max : largest) schedule(static)
-  for (int seg = 0; seg < system.num_segments(); ++seg) {
-    const auto& sp = system.segment_points[seg];
-    const Eigen::Vector3d d0 = delta.col(sp[0]), d1 = delta.col(sp[1]), d2 = delta.col(sp[2]), d3 = delta.col(sp[3]);
-    // Bezier control points of the Catmull-Rom segment of the displacements.
-    const double m = std::max({d1.norm(), d2.norm(), (d1 + (d2 - d0) / 6).norm(), (d2 - (d3 - d1) / 6).norm()});
-    largest = std::max(largest, m);
-  }
+  for (int seg = 0; seg < system.num_segments(); ++seg) largest = std::max(largest, model::segment_largest_move<double>(segment_points, seg, move));
   return largest;
 }
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "relax/yarn_segment.hpp"
 #include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::relax {
@@ -34,9 +35,6 @@ struct YarnSystem {
   /// that the yarn's tube already overlaps itself there. Passing through each other means nothing for such
   /// pieces; the pull-through guard and the auditor watch every other pair.
   bool adjacent(int a, int b) const;
-  /// Distance along a yarn between two points at rest arc positions `a` and `b` of curve `c` (the shorter
-  /// way round a closed curve).
-  double arc_distance(int c, double a, double b) const;
   /// Segments that share a control-point end: the same segment or consecutive ones along a yarn. Every
   /// other pair can touch and pass through each other (Kaldor's |i - j| > 1).
   bool consecutive(int a, int b) const;
@@ -51,6 +49,10 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0
 
 /// Writes the system's control points back into a copy of `curves` (same structure).
 mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points);
+
+/// The system's segment arrays as the shared per-segment math (yarn_segment.hpp) reads them; valid while
+/// `system` lives and is not resized.
+model::SegmentView<double> segment_view(const YarnSystem& system);
 
 /// A bound on the largest distance any point of any yarn moves when the control points move by `delta`:
 /// the largest Bezier control point of each segment's displacement curve (the curve lies in their hull).

@@ -94,7 +94,7 @@ TEST(YarnModel, ContactGradientMatchesFiniteDifferencesIncludingTheSoftCore) {
     // Two open yarns of four points crossing each other `gap` apart (yarn radius 0.5).
     mesh::YarnCurves yarn;
     yarn.radius = 0.5;
-    for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), {1, 0.1, 0}, {2, -0.1, 0.1}, {3, 0, 0}, {1.5, -1.5, gap}, {1.6, -0.5, gap + 0.05},
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), {1, 0.1, 0}, {2, -0.1, 0.1}, {3, 0, 0}, {1.5, -1.5, gap}, {1.6, -0.5, gap + 0.05},
                                     {1.4, 0.5, gap - 0.05}, {1.5, 1.5, gap}})
       yarn.points.push_back(p);
     yarn.curve_start = {0, 4, 8};
@@ -197,7 +197,7 @@ TEST(YarnSystem, SegmentsNeighboursAndSampleCounts) {
   EXPECT_TRUE(system.adjacent(0, 2));  // 0.78 mm of yarn between them, less than 2r = 1 mm
   EXPECT_FALSE(system.adjacent(0, 3));
   EXPECT_TRUE(system.adjacent(0, 22));  // the other way round
-  EXPECT_NEAR(system.arc_distance(0, 0.1, system.curve_length[0] - 0.1), 0.2, 1e-12);  // the short way round
+  EXPECT_NEAR(relax::model::arc_distance(relax::segment_view(system), 0, 0.1, system.curve_length[0] - 0.1), 0.2, 1e-12);  // the short way round
   for (int s = 0; s < system.num_segments(); ++s) {
     EXPECT_EQ(system.contact_samples[s] % 2, 1);
     EXPECT_GT(system.contact_samples[s], system.rest_length[s] / (2 * system.radius));  // Leaf §3.1
