@@ -182,6 +182,18 @@ template <class T> SKEIN_HD T step_bound(T u, T acc, T limit) {
   return (-u + std::sqrt(u * u + 4 * limit * acc)) / (2 * acc);
 }
 
+/// Patch tracking (Yuksel 2012 eqs. 6–7) of one patch whose weighted mean drift from its start is v: the
+/// energy W [phi_N(n.v) + k_T |v_t|^2] with phi_N quadratic, stiffened by k_far beyond `threshold` (biphasic).
+/// The gradient on the patch's point i is w_i * slope.
+template <class T>
+SKEIN_HD T patch_tracking(const Vec3<T>& v, const Vec3<T>& normal, T weight_sum, T k_normal, T k_far, T threshold, T k_tangent, Vec3<T>& slope) {
+  const T x = dot(normal, v), ax = x < 0 ? -x : x, beyond = ax > threshold ? ax - threshold : T(0);
+  const Vec3<T> tangent = v - normal * x;
+  const T dphi = 2 * k_normal * x + 2 * k_far * beyond * (x < 0 ? T(-1) : T(1));
+  slope = normal * dphi + tangent * (2 * k_tangent);
+  return weight_sum * (k_normal * x * x + k_far * beyond * beyond + k_tangent * dot(tangent, tangent));
+}
+
 /// Leaf 2018 eq. 5: converged when the residual |grad E| is small against the first one (eps1) and no longer
 /// changing from the previous step (eps2). Never at step 0.
 template <class T> SKEIN_HD bool converged(long step, T residual, T residual0, T residual_prev, T eps1, T eps2) {

@@ -80,6 +80,15 @@ YarnMethod parse_yarn_method(const std::string& name) {
 
 std::string to_string(YarnMethod method) { return method == YarnMethod::Euler ? "euler" : "fire"; }
 
+Backend parse_backend(const std::string& name) {
+  if (name == "auto") return Backend::Auto;
+  if (name == "cpu") return Backend::Cpu;
+  if (name == "cuda") return Backend::Cuda;
+  throw Error("", "--backend", "expected auto, cpu or cuda, found '" + name + "'");
+}
+
+std::string to_string(Backend backend) { return backend == Backend::Auto ? "auto" : backend == Backend::Cpu ? "cpu" : "cuda"; }
+
 double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
                    Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities, Eigen::Matrix3Xd* damping) {
   const int segments = system.num_segments();

@@ -40,6 +40,12 @@ enum class YarnMethod {
 YarnMethod parse_yarn_method(const std::string& name);  ///< "euler" or "fire"; throws skein::Error otherwise
 std::string to_string(YarnMethod method);
 
+/// Where a run's steps are computed. Auto: CUDA when skein was built with it and a GPU answers, else the
+/// CPU; the choice is logged (skein::cuda::make_yarn_relaxer).
+enum class Backend { Auto, Cpu, Cuda };
+Backend parse_backend(const std::string& name);  ///< "auto", "cpu" or "cuda"; throws skein::Error otherwise
+std::string to_string(Backend backend);
+
 struct YarnRelaxOptions {
   YarnMethod method = YarnMethod::Fire;
   YarnParams params;
@@ -90,7 +96,7 @@ struct YarnRelaxReport {
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run
   long rollbacks = 0, contact_rebuilds = 0;
-  std::string backend = "cpu";
+  std::string backend = "cpu";  ///< "cpu", or "cuda: " and the device's name
 };
 
 /// Relaxes yarn control points toward equilibrium (Yuksel 2012 §6.3, Leaf 2018 §3); never lets two yarns

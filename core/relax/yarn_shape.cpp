@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "common/error.hpp"
+#include "relax/yarn_model.hpp"
 
 namespace skein::relax {
 
@@ -99,13 +100,12 @@ double patch_energy(const ShapeTargets& targets, const ShapeOptions& options, do
     const auto& patch = targets.patches[k];
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (size_t i = 0; i < patch.points.size(); ++i) sum += patch.weights[i] * points.col(patch.points[i]);
-    // Eq. 7 over the weight sum: the patch's weighted mean drift; eq. 6 as W [phi_N(n.v) + k_T |v_t|^2].
+    // Eq. 7 over the weight sum: the patch's weighted mean drift.
     const Eigen::Vector3d v = (sum - patch.start_sum) / patch.weight_sum;
-    const double x = patch.normal.dot(v), beyond = std::max(std::abs(x) - h, 0.0);
-    const Eigen::Vector3d tangent = v - x * patch.normal;
-    energy[k] = patch.weight_sum * (options.k_normal * x * x + options.k_normal_far * beyond * beyond + options.k_tangent * tangent.squaredNorm());
-    const double dphi = 2 * options.k_normal * x + 2 * options.k_normal_far * beyond * (x < 0 ? -1.0 : 1.0);
-    slope[k] = dphi * patch.normal + 2 * options.k_tangent * tangent;  // dE/dq_i = w_i * slope
+    model::Vec3<double> s;
+    energy[k] = model::patch_tracking<double>({v.x(), v.y(), v.z()}, {patch.normal.x(), patch.normal.y(), patch.normal.z()}, patch.weight_sum,
+                                              options.k_normal, options.k_normal_far, h, options.k_tangent, s);
+    slope[k] = {s.x, s.y, s.z};
   }
   double total = 0;
   for (int k = 0; k < n; ++k) {
