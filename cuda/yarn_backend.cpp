@@ -8,12 +8,15 @@ namespace skein::cuda {
 
 std::unique_ptr<relax::YarnRelaxer> make_yarn_relaxer(relax::Backend backend, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                                                       const relax::YarnRelaxOptions& options) {
-  if (backend == relax::Backend::Cpu) return relax::make_cpu_yarn_relaxer(system, targets, options);
+  if (backend == relax::Backend::Cpu) {
+    spdlog::info("backend cpu: relaxing on the CPU");
+    return relax::make_cpu_yarn_relaxer(system, targets, options);
+  }
   const auto query = query_devices();
+  if (!query.available() && backend == relax::Backend::Cuda)
+    throw Error("", "--backend cuda", "no CUDA GPU answered (" + query.reason + "); use --backend cpu or auto");
   spdlog::info("{}", describe(query));
   if (query.available()) return make_cuda_yarn_relaxer(system, targets, options);
-  if (backend == relax::Backend::Cuda)
-    throw Error("", "--backend cuda", "no CUDA GPU answered (" + query.reason + "); use --backend cpu or auto");
   return relax::make_cpu_yarn_relaxer(system, targets, options);
 }
 

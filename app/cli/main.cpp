@@ -19,6 +19,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
+#include "cuda/yarn_relaxer.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -337,6 +338,9 @@ int main(int argc, char** argv) {
   ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
   ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast) or euler (Leaf Algorithm 1)")
       ->check(CLI::IsMember({"fire", "euler"}))->capture_default_str();
+  std::string ry_backend = "auto";
+  ry->add_option("--backend", ry_backend, "auto (the GPU when one answers, else the CPU), cpu or cuda (an error without a GPU)")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   ry->add_option("--checkpoint", ry_checkpoint, "checkpoint file, written atomically every --checkpoint-every steps or minutes");
   ry->add_option("--checkpoint-every", ry_options.checkpoint_every, "steps between checkpoints (default 500 with --checkpoint)");
   ry->add_option("--checkpoint-minutes", ry_options.checkpoint_minutes, "minutes between checkpoints");
@@ -650,8 +654,8 @@ int main(int argc, char** argv) {
         *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
       }
       ProgressBar bar(isatty(fileno(stderr)) && !quiet);
-      auto relaxer = relax::make_cpu_yarn_relaxer(system, targets, ry_options);
-      spdlog::info("relaxing on the CPU with {} ({} threads)", ry_method, omp_get_max_threads());
+      auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(ry_backend), system, targets, ry_options);
+      spdlog::info("relaxing with {} ({} CPU threads for the host side)", ry_method, omp_get_max_threads());
       const double log_tol = std::log(std::max(ry_options.tolerance, 1e-12));
       const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
         if (log)

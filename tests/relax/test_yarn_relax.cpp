@@ -34,22 +34,6 @@ Run relaxed(const YarnSystem& system, const YarnRelaxOptions& options, const Sha
   return run;
 }
 
-/// A small knitted piece of a bundled model: its stitch mesh, yarn, system and shape targets.
-struct Knitted {
-  mesh::StitchMesh piece;
-  mesh::YarnCurves yarn;
-  YarnSystem system;
-  ShapeTargets targets;
-};
-Knitted knitted(const mesh::InputMesh& m, const std::string& fill, mesh::StitchSize size = {15, 12.5}) {
-  Knitted k;
-  k.piece = skein::testing::small_piece(m, fill, size);
-  k.yarn = skein::testing::yarn_of(k.piece);
-  k.system = make_yarn_system(k.yarn);
-  k.targets = shape_targets(k.piece, k.yarn, {});
-  return k;
-}
-
 /// Two linked rings whose yarn is given only 30% of its length: they pull tight against each other.
 YarnRelaxOptions squeeze_options() {
   YarnRelaxOptions o;
@@ -142,7 +126,7 @@ TEST(YarnRelax, WithoutTheGuardAndWithOversizedStepsTheAuditorSeesThePassThrough
 }
 
 TEST(YarnRelax, KnitPurlSwatchConvergesWithoutPullThrough) {
-  const auto [piece, yarn, system, targets] = knitted(models::swatch(), "rib");
+  const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "rib");
   EXPECT_FALSE(targets.boundary_loops.empty());
   EXPECT_FALSE(targets.patches.empty());
   YarnRelaxOptions options;
@@ -163,14 +147,14 @@ TEST(YarnRelax, KnitPurlSwatchConvergesWithoutPullThrough) {
 }
 
 TEST(YarnRelax, RibbedTubeConvergesWithoutPullThrough) {
-  const auto k = knitted(models::tube(), "rib", {12, 10});
+  const auto k = skein::testing::knitted(models::tube(), "rib", {12, 10});
   const auto run = relaxed(k.system, {}, k.targets);
   EXPECT_TRUE(run.report.converged) << run.report.stopped_by << " residual " << run.report.residual;
   EXPECT_EQ(run.report.pull_through_events, 0);
 }
 
 TEST(YarnRelax, EulerStaysUnderTheStepBoundAndLowersTheEnergy) {
-  const auto system = knitted(models::swatch(), "").system;
+  const auto system = skein::testing::knitted(models::swatch(), "").system;
   YarnRelaxOptions options;
   options.method = YarnMethod::Euler;
   options.max_steps = 150;
@@ -186,7 +170,7 @@ TEST(YarnRelax, EulerStaysUnderTheStepBoundAndLowersTheEnergy) {
 }
 
 TEST(YarnRelax, RunsAreDeterministicForAnyThreadCount) {
-  const auto [piece, yarn, system, targets] = knitted(models::swatch(), "seed");
+  const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "seed");
   YarnRelaxOptions options;
   options.max_steps = 60;
   const int threads = omp_get_max_threads();
@@ -201,7 +185,7 @@ TEST(YarnRelax, RunsAreDeterministicForAnyThreadCount) {
 
 TEST(YarnCheckpoint, ResumeEqualsAnUninterruptedRun) {
   skein::testing::ScratchDir dir;
-  const auto [piece, yarn, system, targets] = knitted(models::swatch(), "rib");
+  const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "rib");
   YarnRelaxOptions options;
   options.max_steps = 70;
   options.tolerance = 0;

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 
 #include "garments.hpp"
+#include "relax/yarn_shape.hpp"
+#include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/stitch_model.hpp"
@@ -52,6 +54,22 @@ inline mesh::YarnCurves yarn_of(const mesh::StitchMesh& s, double radius = 1.0) 
   mesh::EmitOptions options;
   options.yarn_radius = radius;
   return mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), options);
+}
+
+/// A small knitted piece of a bundled model: its stitch mesh, yarn, system and shape targets.
+struct Knitted {
+  mesh::StitchMesh piece;
+  mesh::YarnCurves yarn;
+  relax::YarnSystem system;
+  relax::ShapeTargets targets;
+};
+inline Knitted knitted(const mesh::InputMesh& m, const std::string& fill, mesh::StitchSize size = {15, 12.5}) {
+  Knitted k;
+  k.piece = small_piece(m, fill, size);
+  k.yarn = yarn_of(k.piece);
+  k.system = relax::make_yarn_system(k.yarn);
+  k.targets = relax::shape_targets(k.piece, k.yarn, {});
+  return k;
 }
 
 }  // namespace skein::testing
