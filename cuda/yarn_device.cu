@@ -447,11 +447,13 @@ __global__ void k_guard_test(Dev d) {
     }
   }
   atomicAdd(&sc.counters[kPairsTested], 1ull);
+  // About one of the pair's points, so that float keeps its precision for the small distances that matter.
+  const V origin = d.x(p[1]);
   V a0[4], a1[4], b0[4], b1[4];
   for (int k = 0; k < 4; ++k) {
-    a0[k] = d.x(p[k]);
+    a0[k] = d.x(p[k]) - origin;
     a1[k] = a0[k] + d.delta(p[k]);
-    b0[k] = d.x(p[4 + k]);
+    b0[k] = d.x(p[4 + k]) - origin;
     b1[k] = b0[k] + d.delta(p[4 + k]);
   }
   float gap;
@@ -887,7 +889,8 @@ DeviceYarn::DeviceYarn(const relax::YarnSystem& system, const relax::ShapeTarget
   d.segments = system.num_segments();
   d.radius = system.radius;
   d.samples = system.sample_start.back() + system.contact_samples.back();
-  SKEIN_CUDA_CHECK(cudaStreamCreateWithFlags(&d.stream, cudaStreamNonBlocking));
+  // A blocking stream: the plain cudaMemcpy calls (legacy default stream) stay ordered with its kernels.
+  SKEIN_CUDA_CHECK(cudaStreamCreate(&d.stream));
   const auto to_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
   std::vector<int> flat_points;
   for (const auto& sp : system.segment_points) flat_points.insert(flat_points.end(), sp.begin(), sp.end());

@@ -106,8 +106,10 @@ template <class T, class Point>
 SKEIN_HD T segment_forces(const SegmentView<T>& v, const SampleView<T>& samples, const PairView& pairs, const IntrinsicParams<T>& intrinsic,
                           const ContactParams<T>& contact, int s, Point point, Vec3<T> grad[4], Vec3<T> damp[4]) {
   const int* sp = v.segment_points + 4 * s;
+  // The intrinsic terms see only derivatives: about p1 they lose no precision to the garment's size (float).
+  const Vec3<T> origin = point(sp[1]);
   Vec3<T> p[4];
-  for (int k = 0; k < 4; ++k) p[k] = point(sp[k]);
+  for (int k = 0; k < 4; ++k) p[k] = point(sp[k]) - origin;
   const T energy = segment_intrinsic(p, v.rest_length[s], intrinsic, grad);
   const int first = v.sample_start[s], n = v.contact_samples[s], curve = v.segment_curve[s];
   const Vec3<T> zero{0, 0, 0};

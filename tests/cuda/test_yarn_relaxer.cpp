@@ -8,6 +8,7 @@
 #include "cuda/yarn_relaxer.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
+#include "skein/config.hpp"
 #include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
@@ -58,6 +59,7 @@ TEST(CudaYarnRelaxer, BackendCudaWithoutAGpuIsAClearError) {
   EXPECT_EQ(report.backend, "cpu");
 }
 
+#if SKEIN_HAS_CUDA  // DeviceYarn exists only in CUDA builds
 TEST(CudaYarnRelaxer, ContactPairsFromTheGpuGridEqualBruteForce) {
   SKIP_WITHOUT_GPU();
   const auto k = skein::testing::knitted(models::swatch(), "rib");
@@ -81,6 +83,7 @@ TEST(CudaYarnRelaxer, ContactPairsFromTheGpuGridEqualBruteForce) {
   EXPECT_LE(differ, cpu.pairs() / 1000 + 2) << "of " << cpu.pairs() << " pairs";
   EXPECT_GT(cpu.pairs(), 0);
 }
+#endif
 
 TEST(CudaYarnRelaxer, FireStepsFollowTheCpuReference) {
   SKIP_WITHOUT_GPU();
