@@ -30,6 +30,7 @@
 #include "skein/config.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -230,6 +231,56 @@ json guard_json(const relax::GuardCounters& g) {
 
 }  // namespace
 
+/// The outputs of a yarn relaxation (relax-yarn, pattern --relax).
+struct YarnRunOutputs {
+  std::string input, output, method, backend, report, log, png, views;
+  bool progress = false;  ///< a progress bar on the terminal
+};
+
+/// Relaxes `state` with the backend asked for, with progress and the per-step log, then writes the yarn,
+/// the JSON report and the picture. Returns the exit status: 1 when the run diverged.
+int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+                    const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
+  std::unique_ptr<std::ofstream> log;
+  if (!run.log.empty()) {
+    log = std::make_unique<std::ofstream>(run.log);
+    *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
+  }
+  ProgressBar bar(run.progress);
+  auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(run.backend), system, targets, options);
+  spdlog::info("relaxing with {} ({} CPU threads for the host side)", run.method, omp_get_max_threads());
+  const double log_tol = std::log(std::max(options.tolerance, 1e-12));
+  const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
+    if (log)
+      *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
+           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
+    const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
+    const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
+    char text[160];
+    std::snprintf(text, sizeof text, "step %ld residual %.3g move %.3g mm contacts %ld", s.step, s.residual, s.moved, s.contacts);
+    bar.show(std::max(by_steps, by_residual), text);
+    if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
+  });
+  const auto yarn_out_curves = relax::with_points(yarn, state.points);
+  write_yarn(yarn_out_curves, run.output);
+  spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
+               report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
+               report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), run.output);
+  if (!run.report.empty())
+    write_json({{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
+                {"control_points", system.num_points()}, {"segments", system.num_segments()},
+                {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
+                {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
+                {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
+                {"guard_events", guard_json(report.guard)},
+                {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
+                {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
+                {"yarn", yarn_json(yarn_out_curves)}},
+               run.report);
+  if (!run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, render::YarnColor::StitchType, run.views);
+  return report.stopped_by == "diverged" ? 1 : 0;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"skein: polygon mesh → knitted garment with yarn-level detail (Yuksel et al. 2012 stitch meshes)"};
   app.set_version_flag("--version", SKEIN_VERSION);
@@ -373,6 +424,29 @@ int main(int argc, char** argv) {
   ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
   ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
+
+  // skein pattern
+  auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");
+  std::string pat_in, pat_out, pat_tile = "4x4", pat_report, pat_png, pat_log, pat_stitches, pat_backend = "auto";
+  mesh::StitchSize pat_size;
+  double pat_radius = 0, pat_take_up = 1;
+  bool pat_relax = false;
+  relax::YarnRelaxOptions pat_options;
+  pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
+  pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
+  pat->add_option("--tile", pat_tile, "repeats across x up (NxM)")->capture_default_str();
+  pat->add_flag("--relax", pat_relax, "relax the tiled yarn (FIRE, pull-through guard) before writing it");
+  pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
+  pat->add_option("--png", pat_png, "picture of the yarn, front and back");
+  pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
+  pat->add_option("--stitch-size", pat_size.width, "knits: stitch width [mm]; wovens: yarn spacing is 4 yarn radii")->capture_default_str();
+  pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
+  pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
+  pat->add_option("--stitches", pat_stitches, "stitch library folder (default: the bundled stitches/)");
+  pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
+  pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
+  pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
 
   // skein audit
   auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
@@ -648,44 +722,46 @@ int main(int argc, char** argv) {
         state = relax::read_checkpoint(ry_resume, relax::checkpoint_fingerprint(system, ry_options.method), system.num_points());
         spdlog::info("resuming {} at step {}", ry_resume, state.step);
       }
-      std::unique_ptr<std::ofstream> log;
-      if (!ry_log.empty()) {
-        log = std::make_unique<std::ofstream>(ry_log);
-        *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
+      return relax_and_write(yarn, system, targets, ry_options, state,
+                             {ry_in, ry_out, ry_method, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))});
+    }
+    if (*pat) {
+      int across = 0, up = 0;
+      char tail = 0;
+      if (std::sscanf(pat_tile.c_str(), "%dx%d%c", &across, &up, &tail) != 2 || across < 1 || up < 1)
+        throw Error("", "--tile", "expected NxM with N and M at least 1 (e.g. 4x4), found '" + pat_tile + "'");
+      const auto pattern = mesh::read_pattern(pat_in);
+      const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
+      mesh::YarnCurves yarn;
+      relax::ShapeTargets targets;
+      if (pattern.format == mesh::PatternFormat::Woven) {
+        yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, radius);
+      } else {
+        const auto stitch_mesh = mesh::pattern_stitch_mesh(pattern, across, up, pat_size);
+        mesh::EmitOptions emit;
+        emit.yarn_radius = radius;
+        yarn = mesh::emit_yarn(stitch_mesh, pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches), emit);
+        targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
       }
-      ProgressBar bar(isatty(fileno(stderr)) && !quiet);
-      auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(ry_backend), system, targets, ry_options);
-      spdlog::info("relaxing with {} ({} CPU threads for the host side)", ry_method, omp_get_max_threads());
-      const double log_tol = std::log(std::max(ry_options.tolerance, 1e-12));
-      const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
-        if (log)
-          *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-               << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
-        const double by_steps = static_cast<double>(s.step) / std::max<long>(ry_options.max_steps, 1);
-        const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
-        char text[160];
-        std::snprintf(text, sizeof text, "step %ld residual %.3g move %.3g mm contacts %ld", s.step, s.residual, s.moved, s.contacts);
-        bar.show(std::max(by_steps, by_residual), text);
-        if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
-      });
-      const auto yarn_out_curves = relax::with_points(yarn, state.points);
-      write_yarn(yarn_out_curves, ry_out);
-      spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
-                   report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
-                   report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), ry_out);
-      if (!ry_report.empty())
-        write_json({{"input", ry_in}, {"method", ry_method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
-                    {"control_points", system.num_points()}, {"segments", system.num_segments()},
-                    {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
-                    {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
-                    {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
-                    {"guard_events", guard_json(report.guard)},
-                    {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
-                    {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
-                    {"yarn", yarn_json(yarn_out_curves)}},
-                   ry_report);
-      if (!ry_png.empty()) render_yarn_tubes(yarn_out_curves, ry_png, render::YarnColor::StitchType, ry_views);
-      return report.stopped_by == "diverged" ? 1 : 0;
+      spdlog::info("{}: {} x {} repeat, tiled {} x {}: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), across, up,
+                   yarn.curves(), yarn.points.size());
+      if (pat_relax) {
+        pat_options.validate();
+        const auto system = relax::make_yarn_system(yarn, pat_take_up);
+        auto state = relax::initial_state(system, pat_options);
+        return relax_and_write(yarn, system, targets, pat_options, state,
+                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, "flat", !quiet && isatty(fileno(stderr))});
+      }
+      write_yarn(yarn, pat_out);
+      if (!pat_report.empty())
+        write_json({{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
+                    {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},
+                    {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}},
+                   pat_report);
+      if (!pat_png.empty())
+        render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, "flat");
+      spdlog::info("wrote {}", pat_out);
+      return 0;
     }
     if (*audit) {
       const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);

@@ -208,3 +208,26 @@ TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("holds other curves"), std::string::npos) << r.output;
 }
+
+TEST(Cli, PatternTilesEmitsAndRelaxes) {
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  auto r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "seed.bcc").string() + " --tile 3x2 --relax --report " +
+                     (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = slurp(dir / "r.json");
+  EXPECT_NE(report.find("\"converged\": true"), std::string::npos) << report;
+  EXPECT_NE(report.find("\"pull_through_events\": 0"), std::string::npos) << report;
+  r = run_skein("pattern " + patterns + "/twill-2-1.weave -o " + (dir / "twill.bcc").string() + " --tile 2x2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "twill.bcc"));
+  // A broken pattern: the error names the file, line and column, and nothing is written.
+  const auto bad = dir.write("bad.knit", "format knit\nk q\n");
+  r = run_skein("pattern " + bad.string() + " -o " + (dir / "bad.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("line 2, column 3: unknown stitch 'q'"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.bcc"));
+  r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "x.bcc").string() + " --tile 3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("expected NxM"), std::string::npos) << r.output;
+}

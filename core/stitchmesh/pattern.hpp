@@ -1,0 +1,48 @@
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "stitchmesh/stitch_mesh.hpp"
+#include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::mesh {
+
+/// A knitting or weaving pattern written as text (Yuksel 2012 §5.3, Leaf 2018 §4): one repeat, laid out as
+/// the fabric looks (the last line is the first row). patterns/FORMAT.md describes the three formats.
+enum class PatternFormat {
+  Knit,   ///< stitch types of the stitch library, separated by spaces (Yuksel §5.3)
+  Tiles,  ///< Leaf's knit tile codes K P F B (Leaf Table 2)
+  Woven,  ///< 0/1 matrix: 1 = the weft (row) over the warp (column) (Leaf §4)
+};
+
+struct Pattern {
+  std::string name;   ///< from "# name:", else the file's stem
+  std::string note;   ///< from "# source:": where the pattern comes from
+  PatternFormat format = PatternFormat::Knit;
+  /// Knit and tile patterns: per row, bottom row first, the stitch types (tile codes already mapped).
+  std::vector<std::vector<std::string>> rows;
+  /// Woven patterns: per weft row, bottom row first, per warp column: 1 when the weft lies over the warp.
+  std::vector<std::vector<char>> over;
+
+  int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
+  int height() const;  ///< rows or weft yarns in one repeat
+};
+
+/// Reads a pattern file; throws skein::Error naming the file, the line and column and the rule broken
+/// (unknown token with the known names, ragged woven rows, rows whose loop counts do not connect, also
+/// across the repeat, an empty pattern).
+Pattern read_pattern(const std::filesystem::path& file);
+/// The same from text; `source` names it in errors.
+Pattern parse_pattern(const std::string& text, const std::string& source);
+
+/// A flat stitch mesh in the z = 0 plane of a knit pattern repeated `across` times along the course and
+/// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Valid by construction.
+StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
+
+/// Woven yarn of a woven pattern repeated `across` × `up` times: straight weft yarns along x and warp yarns
+/// along y, `spacing` apart, passing over and under each other by one yarn radius at every crossing.
+YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius);
+
+}  // namespace skein::mesh

@@ -1,0 +1,110 @@
+// Patterns as text: the three formats, their errors, tiled stitch meshes and woven yarn, and every bundled
+// pattern.
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/stitch_model.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using namespace skein::mesh;
+
+namespace {
+std::string error_in(const std::string& text) {
+  return skein::testing::error_of([&] { parse_pattern(text, "test.knit"); });
+}
+std::vector<std::filesystem::path> bundled_patterns() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(SKEIN_PATTERNS_DIR))
+    if (e.path().extension() == ".knit" || e.path().extension() == ".weave") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+}  // namespace
+
+TEST(Pattern, KnitRowsAreReadBottomRowFirstWithNameAndSource) {
+  const auto p = parse_pattern("# name: Seed\n# source: a test\nformat knit\n\np k   # the top row\nk p\n", "seed.knit");
+  EXPECT_EQ(p.name, "Seed");
+  EXPECT_EQ(p.note, "a test");
+  ASSERT_EQ(p.rows.size(), 2u);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "p"}));  // the last line is the first row
+  EXPECT_EQ(p.width(), 2);
+  EXPECT_EQ(p.height(), 2);
+}
+
+TEST(Pattern, LeafTilesMapToStitchTypes) {
+  const auto p = parse_pattern("format tiles\nK P F B\n", "t.knit");
+  EXPECT_EQ(p.format, PatternFormat::Tiles);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "p", "sk", "s"}));
+}
+
+TEST(Pattern, WovenMatrixWithOrWithoutSpaces) {
+  const auto p = parse_pattern("format woven\n1 0\n01\n", "w.weave");
+  ASSERT_EQ(p.over.size(), 2u);
+  EXPECT_EQ(p.over[0], (std::vector<char>{0, 1}));
+  EXPECT_EQ(p.over[1], (std::vector<char>{1, 0}));
+}
+
+TEST(Pattern, ErrorsNameTheLineColumnAndRule) {
+  EXPECT_NE(error_in("format knit\nk q p\n").find("line 2, column 3: unknown stitch 'q'; the stitch types are: k p"), std::string::npos)
+      << error_in("format knit\nk q p\n");
+  EXPECT_NE(error_in("").find("is empty"), std::string::npos);
+  EXPECT_NE(error_in("# only a comment\n").find("is empty"), std::string::npos);
+  EXPECT_NE(error_in("format knit\n").find("holds no rows"), std::string::npos);
+  EXPECT_NE(error_in("k p\n").find("line 1, column 1: expected the format first"), std::string::npos);
+  EXPECT_NE(error_in("format woven\n101\n10\n").find("line 2: has 3 columns but line 3 has 2"), std::string::npos) << error_in("format woven\n101\n10\n");
+  EXPECT_NE(error_in("format woven\n1x\n").find("line 2, column 2: expected 0"), std::string::npos);
+  EXPECT_NE(error_in("format tiles\nK YS\n").find("line 2, column 3: tile YS"), std::string::npos);
+  EXPECT_NE(error_in("format tiles\nK k\n").find("unknown tile 'k'"), std::string::npos);
+  // kp makes two loops from one: the row above must take two.
+  EXPECT_NE(error_in("format knit\nk\nkp\n").find("line 2: this row takes 1 loops but the row below it (line 3) makes 2"), std::string::npos)
+      << error_in("format knit\nk\nkp\n");
+  EXPECT_NE(error_in("format knit\nk k\nkp\n").find("the first row takes 1 loops but the last row (line 2) makes 2"), std::string::npos)
+      << error_in("format knit\nk k\nkp\n");
+  const std::string missing = skein::testing::error_of([] { read_pattern("/no/such/pattern.knit"); });
+  EXPECT_NE(missing.find("cannot be opened"), std::string::npos);
+}
+
+TEST(Pattern, TiledStitchMeshIsValidWithIncreasesAndDecreases) {
+  const auto p = parse_pattern("format knit\nk k k k k\nkyk d123k k\n", "eyelet.knit");
+  const auto mesh = pattern_stitch_mesh(p, 3, 2, {6, 5});
+  const auto report = validate(mesh);
+  EXPECT_TRUE(report.valid()) << report.summary();
+  EXPECT_EQ(mesh.faces.size(), 3u * 2u * (5u + 3u));
+  EXPECT_THROW(pattern_stitch_mesh(p, 0, 2), Error);
+}
+
+TEST(Pattern, WovenYarnCrossingsAreAYarnDiameterApart) {
+  const auto p = parse_pattern("format woven\n10\n01\n", "plain.weave");
+  const double r = 0.5;
+  const auto yarn = woven_yarn(p, 2, 3, 4 * r, r);
+  EXPECT_EQ(yarn.curves(), 3 * 2 + 2 * 2);  // weft rows + warp columns
+  // Weft 0 and warp 0 cross at the origin; row 0 is the last line, "01": the warp lies over the weft there.
+  EXPECT_NEAR(yarn.points[1].z(), -r, 1e-12);
+  const int warp0 = yarn.curve_start[6];
+  EXPECT_NEAR(yarn.points[warp0 + 1].z(), r, 1e-12);
+  EXPECT_NEAR((yarn.points[1] - yarn.points[warp0 + 1]).norm(), 2 * r, 1e-12);
+}
+
+TEST(Pattern, EveryBundledPatternReadsTilesAndEmits) {
+  const auto files = bundled_patterns();
+  int knits = 0, wovens = 0;
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.filename().string());
+    const auto p = read_pattern(f);
+    EXPECT_FALSE(p.note.empty()) << "every bundled pattern says where it comes from";
+    if (p.format == PatternFormat::Woven) {
+      ++wovens;
+      EXPECT_GT(woven_yarn(p, 2, 2, 2.4, 0.6).points.size(), 0u);
+      continue;
+    }
+    ++knits;
+    const auto mesh = pattern_stitch_mesh(p, 2, 2);
+    ASSERT_TRUE(validate(mesh).valid()) << validate(mesh).summary();
+    EXPECT_GT(emit_yarn(mesh, StitchLibrary::bundled(), {}).points.size(), 0u);
+  }
+  EXPECT_GE(knits, 20);
+  EXPECT_GE(wovens, 8);
+}
