@@ -8,6 +8,10 @@ namespace skein::cuda {
 
 std::unique_ptr<relax::YarnRelaxer> make_yarn_relaxer(relax::Backend backend, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                                                       const relax::YarnRelaxOptions& options) {
+  if (backend == relax::Backend::Auto && !targets.periodic.empty()) {
+    spdlog::info("periodic patch: relaxing on the CPU (the CUDA relaxer has no periodic boundary conditions yet)");
+    return relax::make_cpu_yarn_relaxer(system, targets, options);
+  }
   if (backend == relax::Backend::Cpu) {
     spdlog::info("backend cpu: relaxing on the CPU");
     return relax::make_cpu_yarn_relaxer(system, targets, options);

@@ -133,6 +133,7 @@ private:
 std::unique_ptr<relax::YarnRelaxer> make_cuda_yarn_relaxer(const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                                                            const relax::YarnRelaxOptions& options) {
   options.validate();
+  if (!targets.periodic.empty()) throw Error("", "CUDA relaxer", "has no periodic boundary conditions yet: relax periodic patches with --backend cpu");
   const auto query = query_devices();
   if (!query.available()) throw Error("", "CUDA relaxer", "no CUDA GPU answered (" + query.reason + ")");
   return std::make_unique<CudaYarnRelaxer>(system, targets, options, query.devices.front().name);

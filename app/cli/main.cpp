@@ -25,6 +25,7 @@
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
 #include "relax/yarn_io.hpp"
+#include "relax/yarn_periodic.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "skein/config.hpp"
@@ -235,6 +236,7 @@ json guard_json(const relax::GuardCounters& g) {
 struct YarnRunOutputs {
   std::string input, output, method, backend, report, log, png, views;
   bool progress = false;  ///< a progress bar on the terminal
+  json extra = json::object();  ///< more report fields
 };
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log, then writes the yarn,
@@ -266,8 +268,8 @@ int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syste
   spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
                report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
                report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), run.output);
-  if (!run.report.empty())
-    write_json({{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
+  if (!run.report.empty()) {
+    json j = {{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
                 {"control_points", system.num_points()}, {"segments", system.num_segments()},
                 {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
                 {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
@@ -275,8 +277,10 @@ int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syste
                 {"guard_events", guard_json(report.guard)},
                 {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
                 {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
-                {"yarn", yarn_json(yarn_out_curves)}},
-               run.report);
+                {"yarn", yarn_json(yarn_out_curves)}};
+    j.update(run.extra);
+    write_json(j, run.report);
+  }
   if (!run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, render::YarnColor::StitchType, run.views);
   return report.stopped_by == "diverged" ? 1 : 0;
 }
@@ -435,7 +439,9 @@ int main(int argc, char** argv) {
   pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
   pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
   pat->add_option("--tile", pat_tile, "repeats across x up (NxM)")->capture_default_str();
-  pat->add_flag("--relax", pat_relax, "relax the tiled yarn (FIRE, pull-through guard) before writing it");
+  bool pat_tiled = false;
+  pat->add_flag("--relax", pat_relax, "relax the pattern's periodic patch (Leaf 2018 §5; FIRE, pull-through guard) and write it");
+  pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
   pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
   pat->add_option("--png", pat_png, "picture of the yarn, front and back");
   pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
@@ -447,6 +453,8 @@ int main(int argc, char** argv) {
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
+  bool pat_no_audit = false;
+  pat->add_flag("--no-audit", pat_no_audit, "with --relax: skip the per-step topology audit");
 
   // skein audit
   auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
@@ -734,23 +742,34 @@ int main(int argc, char** argv) {
       const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
       mesh::YarnCurves yarn;
       relax::ShapeTargets targets;
-      if (pattern.format == mesh::PatternFormat::Woven) {
+      json pat_extra = {{"pattern", pattern.name}};
+      const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
+      if (pat_relax && !pat_tiled) {
+        auto patch = relax::periodic_patch(pattern, library, pat_size, radius);
+        spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
+                     std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
+        pat_extra = {{"pattern", pattern.name},
+                     {"periodic", {{"tiles", patch.tiles}, {"real_points", std::count(patch.ring.begin(), patch.ring.end(), 0)},
+                                   {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
+        yarn = std::move(patch.yarn);
+        targets.periodic = std::move(patch.map);
+      } else if (pattern.format == mesh::PatternFormat::Woven) {
         yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, radius);
       } else {
         const auto stitch_mesh = mesh::pattern_stitch_mesh(pattern, across, up, pat_size);
         mesh::EmitOptions emit;
         emit.yarn_radius = radius;
-        yarn = mesh::emit_yarn(stitch_mesh, pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches), emit);
+        yarn = mesh::emit_yarn(stitch_mesh, library, emit);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
       }
-      spdlog::info("{}: {} x {} repeat, tiled {} x {}: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), across, up,
-                   yarn.curves(), yarn.points.size());
+      spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
       if (pat_relax) {
+        pat_options.audit = !pat_no_audit;
         pat_options.validate();
         const auto system = relax::make_yarn_system(yarn, pat_take_up);
         auto state = relax::initial_state(system, pat_options);
         return relax_and_write(yarn, system, targets, pat_options, state,
-                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, "flat", !quiet && isatty(fileno(stderr))});
+                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, "flat", !quiet && isatty(fileno(stderr)), pat_extra});
       }
       write_yarn(yarn, pat_out);
       if (!pat_report.empty())

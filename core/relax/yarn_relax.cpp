@@ -155,6 +155,13 @@ public:
     std::vector<int> groups(system.num_points(), -1);
     for (int l = 0; l < static_cast<int>(targets.boundary_loops.size()); ++l)
       for (int p : targets.boundary_loops[l]) groups[p] = l;
+    // A real point and its virtual copies move as one (Leaf §5), so the guard holds them together.
+    int next = static_cast<int>(targets.boundary_loops.size());
+    for (size_t i = 0; i < targets.periodic.virtual_points.size(); ++i) {
+      int& real = groups[targets.periodic.real_points[i]];
+      if (real < 0) real = next++;
+      groups[targets.periodic.virtual_points[i]] = real;
+    }
     m_guard.emplace(system, m_options.guard, std::move(groups));
     m_inv_mass.resize(system.num_points());
     for (int p = 0; p < system.num_points(); ++p) m_inv_mass[p] = 1.0 / (system.mass[p] * m_options.params.density);
@@ -175,6 +182,7 @@ public:
     long failures = 0;
     for (;;) {
       energy = forces(state, grad, damping);
+      if (!m_targets.periodic.empty()) constrain_gradient(m_targets.periodic, grad);
       residual = std::sqrt(ordered_sum(grad.cols(), [&](long p) { return grad.col(p).squaredNorm(); }));
       if (!std::isfinite(energy) || !std::isfinite(residual) || !state.points.allFinite()) {
         // Blow-up: back to the last good state with half the step (Leaf §3.1's step restriction failed).
@@ -214,6 +222,7 @@ public:
       const GuardCounters before = m_guard->counters();
       const double dt = propose(state, grad, damping, limit, delta);
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
+      if (!m_targets.periodic.empty()) apply_periodic(m_targets.periodic, delta, state.velocities);
       const double scale = m_guard->accept(state.points, delta);
       const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + delta).size()) : 0;
       state.pull_through_events += crossings;

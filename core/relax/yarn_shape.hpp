@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include "relax/yarn_periodic.hpp"
 #include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/yarn_curves.hpp"
 
@@ -23,7 +24,10 @@ struct ShapeTargets {
     double weight_sum = 0;
   };
   std::vector<Patch> patches;
-  bool empty() const { return boundary_loops.empty() && patches.empty(); }
+  /// Periodic boundary conditions of a pattern's periodic patch (Leaf 2018 §5): not shape preservation, but
+  /// the other constraint on how the yarn may move.
+  PeriodicMap periodic;
+  bool empty() const { return boundary_loops.empty() && patches.empty() && periodic.empty(); }
 };
 
 struct ShapeOptions {

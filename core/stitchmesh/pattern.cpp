@@ -186,20 +186,21 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
     mesh.vertices.emplace_back(x, y, 0.0);
     return static_cast<int>(mesh.vertices.size()) - 1;
   };
+  // Every row's loops spread evenly over the width of the first row's, so that the loops an increase makes
+  // are as wide as any other (its wale edges lean instead).
+  const double width = pattern.width() * across * size.width;
   std::vector<int> bottom;
   for (int k = 0; k <= pattern.width() * across; ++k) bottom.push_back(vertex(k * size.width, 0));
   for (int r = 0; r < up * pattern.height(); ++r) {
     const auto& row = pattern.rows[r % pattern.height()];
-    const double y = (r + 1) * size.height;
-    std::vector<int> top{vertex(mesh.vertices[bottom.front()].x(), y)};
+    const double y = (r + 1) * size.height, loop = width / (across * loops_made(row));
+    std::vector<int> top{vertex(0, y)};
     size_t a = 0;
     for (int copy = 0; copy < across; ++copy)
       for (const auto& name : row) {
         const StitchType& type = *find_stitch_type(name);
-        // The face's top edges share its bottom's extent, so wale edges stay upright.
-        const double x0 = mesh.vertices[bottom[a]].x(), x1 = mesh.vertices[bottom[a + type.bottom]].x();
         const size_t c = top.size() - 1;
-        for (int j = 1; j <= type.top; ++j) top.push_back(vertex(x0 + (x1 - x0) * j / type.top, y));
+        for (int j = 1; j <= type.top; ++j) top.push_back(vertex(static_cast<double>(c + j) * loop, y));
         StitchFace face;
         face.bottom = type.bottom;
         face.row = r;

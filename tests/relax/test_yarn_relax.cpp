@@ -9,7 +9,9 @@
 #include "relax/pull_through_guard.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
@@ -258,4 +260,99 @@ TEST(YarnRelax, OptionsAreValidated) {
   o.checkpoint_every = 10;
   EXPECT_NE(skein::testing::error_of([&] { o.validate(); }).find("needs a checkpoint file"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([] { parse_yarn_method("newton"); }).find("expected euler or fire"), std::string::npos);
+}
+
+namespace {
+/// RMS distance [r] between the periodic patch's real points and the matching points of the centre repeat of
+/// a 5 x 5 tiling relaxed with free borders, the common translation removed. (A repeat of one row makes a
+/// tiling of five rows whose centre row feels the cast-on and bind-off: 2x2 rib written as one row differs by
+/// 0.15 r, written as two rows by 0.03 r.)
+double periodic_against_tiled(const std::string& text) {
+  const auto pattern = mesh::parse_pattern(text, "test.knit");
+  const auto& library = mesh::StitchLibrary::bundled();
+  const double r = 0.6;
+  auto patch = periodic_patch(pattern, library, {}, r);
+  ShapeTargets periodic_targets;
+  periodic_targets.periodic = patch.map;
+  const auto periodic_system = make_yarn_system(patch.yarn);
+  YarnRelaxOptions options;
+  options.audit = false;
+  const auto periodic = relaxed(periodic_system, options, periodic_targets);
+  EXPECT_TRUE(periodic.report.converged) << periodic.report.stopped_by;
+
+  const auto stitch = mesh::pattern_stitch_mesh(pattern, 5, 5);
+  mesh::EmitOptions emit;
+  emit.yarn_radius = r;
+  const auto yarn = mesh::emit_yarn(stitch, library, emit);
+  const auto tiled_system = make_yarn_system(yarn);
+  const auto tiled = relaxed(tiled_system, options);
+  EXPECT_TRUE(tiled.report.converged) << tiled.report.stopped_by;
+
+  // Match the emitted points: the tiling's repeat (2, 2) sits where the patch's centre repeat does, less an offset.
+  const int centre = (patch.tiles - 1) / 2;
+  const Eigen::Vector3d shift = (centre - 2) * (patch.period_x + patch.period_y);
+  std::vector<std::pair<int, int>> pairs;
+  for (int p = 0; p < periodic_system.num_points(); ++p) {
+    if (patch.ring[p] != 0) continue;
+    for (int q = 0; q < tiled_system.num_points(); ++q)
+      if ((tiled_system.points.col(q) + shift - periodic_system.points.col(p)).norm() < 1e-6) {
+        pairs.emplace_back(p, q);
+        break;
+      }
+  }
+  EXPECT_EQ(static_cast<long>(pairs.size()), std::count(patch.ring.begin(), patch.ring.end(), 0));
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& [p, q] : pairs) mean += periodic.state.points.col(p) - tiled.state.points.col(q);
+  mean /= static_cast<double>(pairs.size());
+  double sum = 0;
+  for (const auto& [p, q] : pairs) sum += (periodic.state.points.col(p) - tiled.state.points.col(q) - mean).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(pairs.size())) / r;
+}
+}  // namespace
+
+TEST(YarnPeriodic, VirtualPointsFollowTheirRealPointsAndFrozenOnesStay) {
+  const auto pattern = mesh::parse_pattern("format knit\np k\nk p\n", "seed.knit");
+  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  EXPECT_EQ(patch.tiles, 5);
+  const long real = std::count(patch.ring.begin(), patch.ring.end(), 0);
+  EXPECT_EQ(static_cast<long>(patch.map.virtual_points.size()), 8 * real);  // one ring of 8 repeats, every point matched
+  ShapeTargets targets;
+  targets.periodic = patch.map;
+  const auto system = make_yarn_system(patch.yarn);
+  YarnRelaxOptions options;
+  options.max_steps = 40;
+  const auto run = relaxed(system, options, targets);
+  EXPECT_EQ(run.report.pull_through_events, 0);
+  for (size_t i = 0; i < patch.map.virtual_points.size(); ++i) {
+    const Eigen::Vector3d expected = run.state.points.col(patch.map.real_points[i]) + patch.map.offsets[i];
+    EXPECT_LT((run.state.points.col(patch.map.virtual_points[i]) - expected).norm(), 1e-9);
+  }
+  for (int p : patch.map.frozen) EXPECT_EQ(run.state.points.col(p), system.points.col(p));
+  EXPECT_GT((run.state.points - system.points).cwiseAbs().maxCoeff(), 0.01);  // the real points did move
+}
+
+TEST(YarnPeriodic, PeriodicPatchAgreesWithTheCentreOfATiledRelaxation) {
+  const double seed = periodic_against_tiled("format knit\np k\nk p\n");
+  const double rib = periodic_against_tiled("format knit\nk k p p\nk k p p\n");
+  std::printf("periodic against the centre of a 5 x 5 tiling, RMS: seed %.4f r, 2x2 rib %.4f r\n", seed, rib);
+  EXPECT_LT(seed, 0.05);
+  EXPECT_LT(rib, 0.05);
+}
+
+TEST(YarnPeriodic, EveryBundledPatternConvergesWithoutPullThrough) {
+  int patterns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SKEIN_PATTERNS_DIR)) {
+    const auto ext = entry.path().extension();
+    if (ext != ".knit" && ext != ".weave") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const auto pattern = mesh::read_pattern(entry.path());
+    auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+    ShapeTargets targets;
+    targets.periodic = patch.map;
+    const auto run = relaxed(make_yarn_system(patch.yarn), {}, targets);
+    EXPECT_TRUE(run.report.converged) << run.report.stopped_by;
+    EXPECT_EQ(run.report.pull_through_events, 0);
+    ++patterns;
+  }
+  EXPECT_GE(patterns, 28);
 }

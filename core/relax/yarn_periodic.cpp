@@ -1,0 +1,169 @@
+#include "relax/yarn_periodic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <map>
+
+#include "common/error.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+
+namespace skein::relax {
+namespace {
+
+using Key = std::tuple<long long, long long, long long>;
+Key key_of(const Eigen::Vector3d& p) { return {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4)}; }
+
+/// Virtual rings: at least two stitches or yarns wide on every side.
+int virtual_rings(const mesh::Pattern& pattern) {
+  return std::max({1, (2 + pattern.width() - 1) / pattern.width(), (2 + pattern.height() - 1) / pattern.height()});
+}
+
+/// Fills the map from each point's repeat (a, b) (or -1 for none): the centre repeat is real, the rings up to
+/// `rings` from it virtual where a centre point sits at the position less the repeat's offset, the rest frozen.
+void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& repeat, int rings) {
+  const int centre = rings + 1;
+  const int n = static_cast<int>(patch.yarn.points.size());
+  patch.ring.assign(n, patch.tiles);
+  std::map<Key, int> real;
+  for (int p = 0; p < n; ++p) {
+    const auto [a, b] = repeat[p];
+    if (a < 0) continue;
+    patch.ring[p] = std::max(std::abs(a - centre), std::abs(b - centre));
+    if (patch.ring[p] == 0) real.emplace(key_of(patch.yarn.points[p]), p);
+  }
+  for (int p = 0; p < n; ++p) {
+    if (patch.ring[p] == 0) continue;
+    if (patch.ring[p] <= rings) {
+      const auto [a, b] = repeat[p];
+      const Eigen::Vector3d offset = (a - centre) * patch.period_x + (b - centre) * patch.period_y;
+      if (const auto it = real.find(key_of(patch.yarn.points[p] - offset)); it != real.end()) {
+        patch.map.virtual_points.push_back(p);
+        patch.map.real_points.push_back(it->second);
+        patch.map.offsets.push_back(offset);
+        continue;
+      }
+    }
+    patch.map.frozen.push_back(p);
+  }
+}
+
+/// Removes the frozen points: they only made the virtual rings' stitches interior ones at emission. Curves
+/// are cut where they leave; the pieces that remain keep their order, and the map its meaning.
+void drop_frozen(PeriodicPatch& patch) {
+  const auto& in = patch.yarn;
+  const int n = static_cast<int>(in.points.size());
+  std::vector<char> keep(n, 1);
+  for (int p : patch.map.frozen) keep[p] = 0;
+  mesh::YarnCurves out;
+  out.radius = in.radius;
+  out.type_names = in.type_names;
+  std::vector<int> index(n, -1), ring;
+  for (int c = 0; c < in.curves(); ++c) {
+    const int begin = in.curve_start[c], end = in.curve_start[c + 1];
+    const bool whole = std::all_of(keep.begin() + begin, keep.begin() + end, [](char k) { return k != 0; });
+    // A closed curve that loses points opens where it does: start the walk just after a dropped point.
+    int first = begin;
+    if (in.closed[c] && !whole)
+      while (keep[first]) ++first;
+    std::vector<int> piece;
+    const auto flush = [&](bool closed) {
+      if (piece.size() >= 2) {
+        for (int p : piece) {
+          index[p] = static_cast<int>(out.points.size());
+          out.points.push_back(in.points[p]);
+          out.point_face.push_back(in.point_face[p]);
+          out.point_type.push_back(in.point_type[p]);
+          ring.push_back(patch.ring[p]);
+        }
+        out.curve_start.push_back(static_cast<int>(out.points.size()));
+        out.closed.push_back(closed);
+      }
+      piece.clear();
+    };
+    for (int k = 0; k < end - begin; ++k) {
+      const int p = begin + (first - begin + k) % (end - begin);
+      if (keep[p]) piece.push_back(p);
+      else flush(false);
+    }
+    flush(in.closed[c] && whole);
+  }
+  PeriodicMap map;
+  for (size_t i = 0; i < patch.map.virtual_points.size(); ++i) {
+    const int v = index[patch.map.virtual_points[i]], r = index[patch.map.real_points[i]];
+    if (v < 0) continue;  // a lone virtual point between dropped ones
+    if (r < 0) throw Error("", "periodic patch", "a real point fell on a piece of fewer than two points");
+    map.virtual_points.push_back(v);
+    map.real_points.push_back(r);
+    map.offsets.push_back(patch.map.offsets[i]);
+  }
+  patch.yarn = std::move(out);
+  patch.map = std::move(map);
+  patch.ring = std::move(ring);
+}
+
+}  // namespace
+
+void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matrix3Xd& velocities) {
+  for (size_t i = 0; i < map.virtual_points.size(); ++i) {
+    delta.col(map.virtual_points[i]) = delta.col(map.real_points[i]);
+    velocities.col(map.virtual_points[i]) = velocities.col(map.real_points[i]);
+  }
+  for (int p : map.frozen) {
+    delta.col(p).setZero();
+    velocities.col(p).setZero();
+  }
+}
+
+void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient) {
+  for (int p : map.virtual_points) gradient.col(p).setZero();
+  for (int p : map.frozen) gradient.col(p).setZero();
+}
+
+PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius) {
+  if (pattern.format == mesh::PatternFormat::Woven) return periodic_woven_patch(pattern, 4 * radius, radius);
+  const int rings = virtual_rings(pattern);
+  PeriodicPatch patch;
+  patch.tiles = 2 * rings + 3;
+  const auto stitch = mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size);
+  mesh::EmitOptions emit;
+  emit.yarn_radius = radius;
+  patch.yarn = mesh::emit_yarn(stitch, library, emit);
+  patch.period_x = {pattern.width() * size.width, 0, 0};
+  patch.period_y = {0, pattern.height() * size.height, 0};
+  // pattern_stitch_mesh makes faces row by row, each row its repeats left to right.
+  std::vector<std::pair<int, int>> face_repeat;
+  for (int r = 0; r < patch.tiles * pattern.height(); ++r) {
+    const int per_copy = static_cast<int>(pattern.rows[r % pattern.height()].size());
+    for (int copy = 0; copy < patch.tiles; ++copy)
+      for (int t = 0; t < per_copy; ++t) face_repeat.emplace_back(copy, r / pattern.height());
+  }
+  std::vector<std::pair<int, int>> repeat;
+  for (int f : patch.yarn.point_face) repeat.push_back(f >= 0 && f < static_cast<int>(face_repeat.size()) ? face_repeat[f] : std::pair{-1, -1});
+  map_points(patch, repeat, rings);
+  drop_frozen(patch);
+  return patch;
+}
+
+PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing, double radius) {
+  const int rings = virtual_rings(pattern);
+  PeriodicPatch patch;
+  patch.tiles = 2 * rings + 3;
+  patch.yarn = mesh::woven_yarn(pattern, patch.tiles, patch.tiles, spacing, radius);
+  patch.period_x = {pattern.width() * spacing, 0, 0};
+  patch.period_y = {0, pattern.height() * spacing, 0};
+  // Crossings lie on the grid of yarns; the yarns' ends beyond the last crossing belong to no repeat.
+  const int cols = patch.tiles * pattern.width(), rows = patch.tiles * pattern.height();
+  std::vector<std::pair<int, int>> repeat;
+  for (const auto& p : patch.yarn.points) {
+    const double j = p.x() / spacing, i = p.y() / spacing;
+    const long jj = std::lround(j), ii = std::lround(i);
+    const bool on_grid = std::abs(j - jj) < 1e-9 && std::abs(i - ii) < 1e-9 && jj >= 0 && jj < cols && ii >= 0 && ii < rows;
+    repeat.push_back(on_grid ? std::pair{static_cast<int>(jj / pattern.width()), static_cast<int>(ii / pattern.height())} : std::pair{-1, -1});
+  }
+  map_points(patch, repeat, rings);
+  drop_frozen(patch);
+  return patch;
+}
+
+}  // namespace skein::relax

@@ -1,0 +1,49 @@
+#pragma once
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/stitch_model.hpp"
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::relax {
+
+/// Periodic boundary conditions (Leaf 2018 §5, Algorithm 2): each virtual control point copies a real one
+/// plus a fixed offset after every step, and frozen points never move.
+struct PeriodicMap {
+  std::vector<int> virtual_points;        ///< iV
+  std::vector<int> real_points;           ///< iR, per virtual point
+  std::vector<Eigen::Vector3d> offsets;   ///< d, per virtual point [mm]
+  std::vector<int> frozen;                ///< points held where they are (the outermost copies)
+  bool empty() const { return virtual_points.empty() && frozen.empty(); }
+};
+
+/// Algorithm 2 on a step: every virtual point takes its real point's move and velocity, frozen points take
+/// none. Positions that start consistent (virtual = real + offset) stay so.
+void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matrix3Xd& velocities);
+
+/// A pattern's periodic patch: its yarn tiled (2k + 3) x (2k + 3) times, the centre repeat real and the k
+/// rings around it virtual (at least two stitches or yarns wide, so that every real point sees the
+/// neighbourhood it would have in an endless fabric). The outermost ring only makes the virtual stitches
+/// interior ones at emission and is dropped (curves are cut there); virtual points that match no real one are
+/// frozen.
+struct PeriodicPatch {
+  mesh::YarnCurves yarn;
+  PeriodicMap map;
+  std::vector<int> ring;               ///< per point: its repeat's distance from the centre (0: real)
+  Eigen::Vector3d period_x, period_y;  ///< the repeat's offsets [mm]
+  int tiles = 0;                       ///< repeats along each side, the dropped ring included
+};
+/// Knits and tiles: from the stitch mesh of the tiled pattern, emitted with `library`. A virtual point is
+/// matched to the centre point at its position less the repeat's offset; emitted points that match none
+/// (stitches at the borders) are frozen.
+PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius);
+/// Wovens: crossings `spacing` apart.
+PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing, double radius);
+
+/// Zeroes the gradient of virtual and frozen points: they are not degrees of freedom, so neither the
+/// integrator nor the convergence test (Leaf eq. 5) may count them.
+void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
+
+}  // namespace skein::relax
