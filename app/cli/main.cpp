@@ -114,16 +114,20 @@ void write_json(const json& j, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
-/// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches).
+/// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches); "front": the
+/// straight front alone.
 render::View view_named(const std::string& name) {
   render::View view;
   if (name == "flat") view.directions = {{0, 0, -1}, {0, 0, 1}};
+  if (name == "front") view.directions = {{0, 0, -1}};
   return view;
 }
 
-void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment") {
+void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
+                       int panel = 900) {
   Stopwatch t;
   render::View view = view_named(views);
+  view.panel = panel;
   view.outlines = false;
   render::write_png(render::draw(render::yarn_polygons(yarn, color), view), path);
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
@@ -237,6 +241,8 @@ struct YarnRunOutputs {
   std::string input, output, method, backend, report, log, png, views;
   bool progress = false;  ///< a progress bar on the terminal
   json extra = json::object();  ///< more report fields
+  int panel = 900;              ///< picture: pixels per view
+  render::YarnColor color = render::YarnColor::StitchType;
 };
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log, then writes the yarn,
@@ -281,7 +287,7 @@ int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syste
     j.update(run.extra);
     write_json(j, run.report);
   }
-  if (!run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, render::YarnColor::StitchType, run.views);
+  if (!run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, run.color, run.views, run.panel);
   return report.stopped_by == "diverged" ? 1 : 0;
 }
 
@@ -453,6 +459,15 @@ int main(int argc, char** argv) {
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
+  std::string pat_views = "flat";
+  int pat_panel = 900;
+  pat->add_option("--views", pat_views, "flat (front and back) or front, for --png")->check(CLI::IsMember({"flat", "front"}))->capture_default_str();
+  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(CLI::Range(64, 4096))->capture_default_str();
+  std::string pat_onto, pat_rows;
+  int pat_face = 0;
+  auto* onto_opt = pat->add_option("--onto", pat_onto, "tile the pattern onto this project's stitch mesh instead (-o writes the project)");
+  pat->add_option("--face", pat_face, "with --onto: the stitch that takes the pattern's first stitch")->needs(onto_opt)->capture_default_str();
+  pat->add_option("--rows", pat_rows, "with --onto: the rows A:B the pattern covers (default: all)")->needs(onto_opt);
   bool pat_no_audit = false;
   pat->add_flag("--no-audit", pat_no_audit, "with --relax: skip the per-step topology audit");
 
@@ -739,6 +754,20 @@ int main(int argc, char** argv) {
       if (std::sscanf(pat_tile.c_str(), "%dx%d%c", &across, &up, &tail) != 2 || across < 1 || up < 1)
         throw Error("", "--tile", "expected NxM with N and M at least 1 (e.g. 4x4), found '" + pat_tile + "'");
       const auto pattern = mesh::read_pattern(pat_in);
+      if (!pat_onto.empty()) {
+        check_writable(pat_out);
+        auto project = mesh::read_project(pat_onto);
+        if (!project.stitch) throw Error(pat_onto, "", "holds no stitch mesh; run 'skein stitch' first");
+        const auto [a, b] = pat_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(pat_rows);
+        std::vector<int> faces;
+        for (int f = 0; f < static_cast<int>(project.stitch->faces.size()); ++f)
+          if (project.stitch->faces[f].row >= a && project.stitch->faces[f].row <= b) faces.push_back(f);
+        *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face);
+        mesh::write_project(project, pat_out);
+        if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, render::ColorBy::StitchType);
+        spdlog::info("tiled {} over {} faces from face {}; wrote {}", pattern.name, faces.size(), pat_face, pat_out);
+        return 0;
+      }
       const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
       mesh::YarnCurves yarn;
       relax::ShapeTargets targets;
@@ -769,7 +798,8 @@ int main(int argc, char** argv) {
         const auto system = relax::make_yarn_system(yarn, pat_take_up);
         auto state = relax::initial_state(system, pat_options);
         return relax_and_write(yarn, system, targets, pat_options, state,
-                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, "flat", !quiet && isatty(fileno(stderr)), pat_extra});
+                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra, pat_panel,
+                                pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType});
       }
       write_yarn(yarn, pat_out);
       if (!pat_report.empty())
@@ -778,7 +808,8 @@ int main(int argc, char** argv) {
                     {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}},
                    pat_report);
       if (!pat_png.empty())
-        render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, "flat");
+        render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, pat_views,
+                          pat_panel);
       spdlog::info("wrote {}", pat_out);
       return 0;
     }

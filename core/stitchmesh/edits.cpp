@@ -277,17 +277,15 @@ Fill parse_fill(const std::string& text) {
   throw Error("", "fill '" + text + "'", "expected stockinette, reverse, garter, seed, moss, rib or ribKxP (e.g. rib2x2)");
 }
 
-StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fill& pattern) {
-  const std::set<int> chosen(faces.begin(), faces.end());
-  for (int f : chosen)
-    if (f < 0 || f >= static_cast<int>(mesh.faces.size())) throw Error("", "face " + std::to_string(f), "does not exist");
+StitchGrid stitch_grid(const StitchMesh& mesh) {
   const auto rows = faces_by_row(mesh);
   const EdgeTable table = edge_table(mesh);
   const auto below = [&](int f) { return stitch_below(mesh, table, f); };
   // Rows bottom-up, so that each row lines its columns up with the stitches it is worked into.
   const RowOrder ordered = row_order(mesh, rows, table);
-  const auto& level = ordered.level;
-  std::vector<long> column(mesh.faces.size(), 0);
+  StitchGrid grid;
+  grid.column.assign(mesh.faces.size(), 0);
+  grid.level.assign(mesh.faces.size(), 0);
   std::vector<char> placed(mesh.faces.size(), 0);
   for (int r : ordered.order) {
     const auto& row = rows[r];
@@ -296,22 +294,30 @@ StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fil
     size_t first_anchored = row.size();
     for (size_t i = 0; i < row.size() && first_anchored == row.size(); ++i)
       if (const int b = below(row[i]); b >= 0 && placed[b]) first_anchored = i;
-    long col = first_anchored < row.size() ? column[below(row[first_anchored])] - static_cast<long>(first_anchored) : 0;
+    long col = first_anchored < row.size() ? grid.column[below(row[first_anchored])] - static_cast<long>(first_anchored) : 0;
     for (size_t i = 0; i < row.size(); ++i) {
       const int f = row[i], b = below(f);
       const bool anchored = b >= 0 && placed[b] && (i == 0 || b != below(row[i - 1]));
-      col = anchored ? column[b] : (i == 0 ? col : col + 1);
-      column[f] = col;
+      col = anchored ? grid.column[b] : (i == 0 ? col : col + 1);
+      grid.column[f] = col;
+      grid.level[f] = ordered.level[r];
     }
     for (int f : row) placed[f] = 1;
   }
+  return grid;
+}
 
+StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fill& pattern) {
+  const std::set<int> chosen(faces.begin(), faces.end());
+  for (int f : chosen)
+    if (f < 0 || f >= static_cast<int>(mesh.faces.size())) throw Error("", "face " + std::to_string(f), "does not exist");
+  const StitchGrid grid = stitch_grid(mesh);
   StitchMesh out = mesh;
   const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
   for (int f : chosen) {
     auto& face = out.faces[f];
     if (face.bottom != 1 || face.top() != 1) continue;
-    const long row = level[face.row], col = column[f];
+    const long row = grid.level[f], col = grid.column[f];
     bool knit = true;
     switch (pattern.kind) {
       case FillKind::Stockinette: knit = true; break;

@@ -36,6 +36,13 @@ StitchMesh shift_wale_edge(const StitchMesh& mesh, int u, int v, WaleEnd end, in
 StitchMesh mark_cable(const StitchMesh& mesh, const std::vector<int>& path, int shift, int order);
 StitchMesh unmark_cable(const StitchMesh& mesh, const std::vector<int>& path);
 
+/// Where each stitch sits in the knitted fabric: its row counted bottom-up (`level`) and its column, lined up
+/// with the stitches it is worked into (the second stitch above an increase takes the next column).
+struct StitchGrid {
+  std::vector<long> level, column;  ///< per face
+};
+StitchGrid stitch_grid(const StitchMesh& mesh);
+
 /// Fills over a set of faces with a knit/purl pattern (Yuksel §5.3). Only plain stitches (one bottom and
 /// one top edge) change; increases and decreases keep their type.
 enum class FillKind { Stockinette, ReverseStockinette, Rib, Garter, Seed, Moss };

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::mesh {
@@ -213,6 +214,30 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
     bottom = std::move(top);
   }
   return mesh;
+}
+
+StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin) {
+  if (pattern.format == PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: it cannot be tiled onto a stitch mesh");
+  for (const auto& row : pattern.rows)
+    for (const auto& name : row)
+      if (const auto* t = find_stitch_type(name); t->bottom != 1 || t->top != 1)
+        throw Error("", "pattern " + pattern.name,
+                    "has the " + name + " stitch (" + std::to_string(t->bottom) + " loops below, " + std::to_string(t->top) +
+                        " above): only patterns of plain stitches tile onto a stitch mesh so far, since others would re-mesh the region");
+  const int n = static_cast<int>(mesh.faces.size());
+  if (origin < 0 || origin >= n) throw Error("", "face " + std::to_string(origin), "does not exist (the stitch mesh has " + std::to_string(n) + " faces)");
+  for (int f : faces)
+    if (f < 0 || f >= n) throw Error("", "face " + std::to_string(f), "does not exist");
+  const StitchGrid grid = stitch_grid(mesh);
+  const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
+  StitchMesh out = mesh;
+  for (int f : faces) {
+    auto& face = out.faces[f];
+    if (face.bottom != 1 || face.top() != 1) continue;
+    const auto& row = pattern.rows[mod(grid.level[f] - grid.level[origin], pattern.height())];
+    face.type = row[mod(grid.column[f] - grid.column[origin], static_cast<long>(row.size()))];
+  }
+  return out;
 }
 
 YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius) {

@@ -41,6 +41,13 @@ Pattern parse_pattern(const std::string& text, const std::string& source);
 /// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
 
+/// Tiles a knit pattern over `faces` of a stitch mesh (Yuksel 2012 §5.3): the stitch `origin` takes the
+/// pattern's first stitch of its first row, and every other chosen stitch the pattern's stitch at its row and
+/// column from there (stitch_grid), modulo the repeat. Patterns of plain stitches (one loop below, one above)
+/// only: a pattern with increases or decreases would have to re-mesh the region, which is an error here.
+/// Chosen faces of another shape keep their type. The result is valid when the input is.
+StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin);
+
 /// Woven yarn of a woven pattern repeated `across` × `up` times: straight weft yarns along x and warp yarns
 /// along y, `spacing` apart, passing over and under each other by one yarn radius at every crossing.
 YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius);

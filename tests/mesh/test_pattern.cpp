@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "stitchmesh/edits.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "stitch_fixtures.hpp"
 #include "testing.hpp"
+#include "yarn_fixtures.hpp"
 
 using namespace skein;
 using namespace skein::mesh;
@@ -107,4 +110,40 @@ TEST(Pattern, EveryBundledPatternReadsTilesAndEmits) {
   }
   EXPECT_GE(knits, 20);
   EXPECT_GE(wovens, 8);
+}
+
+TEST(Pattern, TilingOntoAStitchMeshPlacesTheRepeatFromTheOriginFace) {
+  const auto piece = skein::testing::small_piece(models::tube(), "");
+  const auto faces = skein::testing::all_faces(piece);
+  const auto grid = stitch_grid(piece);
+  // Origin: a stitch of the lowest row and leftmost column, where fill's rib starts too.
+  int origin = -1;
+  for (int f : faces)
+    if (piece.faces[f].bottom == 1 && piece.faces[f].top() == 1 && grid.column[f] == 0 && (origin < 0 || grid.level[f] < grid.level[origin])) origin = f;
+  ASSERT_GE(origin, 0);
+  ASSERT_EQ(grid.level[origin], 0);
+  const auto rib = parse_pattern("format knit\nk p\n", "rib.knit");
+  const auto tiled = tile_pattern(piece, faces, rib, origin);
+  EXPECT_TRUE(validate(tiled).valid());
+  EXPECT_EQ(tiled, fill(piece, faces, parse_fill("rib")));  // the same as the built-in 1x1 rib fill
+  // Seed from another origin: each stitch's type follows its row and column from there.
+  const auto seed = parse_pattern("format knit\np k\nk p\n", "seed.knit");
+  const int other = faces[faces.size() / 2];
+  const auto seeded = tile_pattern(piece, faces, seed, other);
+  for (int f : faces) {
+    if (piece.faces[f].bottom != 1 || piece.faces[f].top() != 1) continue;
+    const long parity = ((grid.level[f] - grid.level[other]) + (grid.column[f] - grid.column[other])) % 2;
+    EXPECT_EQ(seeded.faces[f].type, parity == 0 ? "k" : "p") << "face " << f;
+  }
+}
+
+TEST(Pattern, TilingRefusesWhatItCannotPlace) {
+  const auto piece = skein::testing::small_piece(models::tube(), "");
+  const auto faces = skein::testing::all_faces(piece);
+  const auto eyelet = parse_pattern("format knit\nk k k k k\nkyk d123k k\n", "eyelet.knit");
+  EXPECT_NE(skein::testing::error_of([&] { tile_pattern(piece, faces, eyelet, 0); }).find("only patterns of plain stitches"), std::string::npos);
+  const auto rib = parse_pattern("format knit\nk p\n", "rib.knit");
+  EXPECT_NE(skein::testing::error_of([&] { tile_pattern(piece, faces, rib, -1); }).find("face -1: does not exist"), std::string::npos);
+  const auto weave = parse_pattern("format woven\n10\n01\n", "w.weave");
+  EXPECT_THROW(tile_pattern(piece, faces, weave, 0), Error);
 }

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The gallery of bundled patterns (docs/pattern-gallery.md): every pattern's periodic patch relaxed and drawn
+# from the front into docs/images/patterns/. Run after scripts/build.sh; takes about a minute on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+skein=build/bin/skein
+images=docs/images/patterns
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$images"
+page=docs/pattern-gallery.md
+{
+  echo "# Pattern gallery"
+  echo
+  echo "Every bundled pattern (\`patterns/\`), its periodic patch relaxed with \`skein pattern FILE --relax\` (the repeat in"
+  echo "the middle, one ring of virtual copies around it) and drawn from the front. Made by \`scripts/pattern-gallery.sh\`."
+  echo
+  echo "| pattern | repeat | steps | picture |"
+  echo "| --- | --- | --- | --- |"
+} >"$page"
+for f in patterns/*.knit patterns/*.weave; do
+  name=$(basename "$f"); name=${name%.*}
+  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --no-audit --report "$tmp/r.json" --png "$images/$name.png" --views front --png-size 360
+  python3 - "$f" "$tmp/r.json" "$name" >>"$page" <<'PY'
+import json, sys
+f, report, name = sys.argv[1:]
+r = json.load(open(report))
+source = next((l.split(":", 1)[1].strip() for l in open(f) if l.startswith("# source:")), "")
+title = next((l.split(":", 1)[1].strip() for l in open(f) if l.startswith("# name:")), name)
+print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}](images/patterns/{name}.png) |")
+PY
+done
+echo "wrote $page and $images/"
