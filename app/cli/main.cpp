@@ -228,6 +228,19 @@ private:
   Stopwatch m_started, m_last;
 };
 
+/// TYPE=F pairs of --take-up-stitch.
+std::map<std::string, double> parse_take_up(const std::string& option, const std::vector<std::string>& pairs) {
+  std::map<std::string, double> out;
+  for (const auto& text : pairs) {
+    const auto [name, value] = std::pair{text.substr(0, text.find('=')), text.find('=') == std::string::npos ? "" : text.substr(text.find('=') + 1)};
+    char* end = nullptr;
+    const double f = std::strtod(value.c_str(), &end);
+    if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
+    out[name] = f;
+  }
+  return out;
+}
+
 json guard_json(const relax::GuardCounters& g) {
   return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
           {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},
@@ -243,6 +256,7 @@ struct YarnRunOutputs {
   json extra = json::object();  ///< more report fields
   int panel = 900;              ///< picture: pixels per view
   render::YarnColor color = render::YarnColor::StitchType;
+  double scale = 1;             ///< the relaxed yarn is written scaled by this (1/gamma, Leaf §6.2)
 };
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log, then writes the yarn,
@@ -269,7 +283,8 @@ int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syste
     bar.show(std::max(by_steps, by_residual), text);
     if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
   });
-  const auto yarn_out_curves = relax::with_points(yarn, state.points);
+  auto yarn_out_curves = relax::with_points(yarn, state.points * run.scale);
+  yarn_out_curves.radius *= run.scale;
   write_yarn(yarn_out_curves, run.output);
   spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
                report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
@@ -420,6 +435,8 @@ int main(int argc, char** argv) {
   ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
   ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
+  std::vector<std::string> ry_take_up_stitch;
+  ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
   ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
@@ -455,6 +472,11 @@ int main(int argc, char** argv) {
   pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
   pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
   pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
+  std::vector<std::string> pat_take_up_stitch;
+  pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
+  double pat_gamma = 1;
+  pat->add_option("--gamma", pat_gamma, "with --relax: relax at gamma x the yarn radius and scale back by 1/gamma: 1/gamma of the yarn length (Leaf 2018 §6.2)")
+      ->check(CLI::Range(0.25, 4.0))->capture_default_str();
   pat->add_option("--stitches", pat_stitches, "stitch library folder (default: the bundled stitches/)");
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
@@ -736,7 +758,7 @@ int main(int argc, char** argv) {
         yarn = yarn_of(ry_in, ry_radius, ry_stitches);
         if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
       }
-      const auto system = relax::make_yarn_system(yarn, ry_take_up);
+      const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
                    system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
                    targets.boundary_loops.size(), targets.patches.size(), t.seconds());
@@ -773,8 +795,11 @@ int main(int argc, char** argv) {
       relax::ShapeTargets targets;
       json pat_extra = {{"pattern", pattern.name}};
       const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
+      // Leaf §6.2: the yarn is made and relaxed at gamma r, and the result scaled back by 1/gamma.
+      const double sim_radius = (pat_relax ? pat_gamma : 1.0) * radius;
       if (pat_relax && !pat_tiled) {
-        auto patch = relax::periodic_patch(pattern, library, pat_size, radius);
+        auto patch = pattern.format == mesh::PatternFormat::Woven ? relax::periodic_woven_patch(pattern, 4 * radius, sim_radius)
+                                                                  : relax::periodic_patch(pattern, library, pat_size, sim_radius);
         spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
                      std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
         pat_extra = {{"pattern", pattern.name},
@@ -783,23 +808,25 @@ int main(int argc, char** argv) {
         yarn = std::move(patch.yarn);
         targets.periodic = std::move(patch.map);
       } else if (pattern.format == mesh::PatternFormat::Woven) {
-        yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, radius);
+        yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius);
       } else {
         const auto stitch_mesh = mesh::pattern_stitch_mesh(pattern, across, up, pat_size);
         mesh::EmitOptions emit;
-        emit.yarn_radius = radius;
+        emit.yarn_radius = sim_radius;
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
       }
       spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
+        pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
-        const auto system = relax::make_yarn_system(yarn, pat_take_up);
+        pat_extra["gamma"] = pat_gamma;
+        const auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch));
         auto state = relax::initial_state(system, pat_options);
         return relax_and_write(yarn, system, targets, pat_options, state,
                                {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra, pat_panel,
-                                pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType});
+                                pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, 1 / pat_gamma});
       }
       write_yarn(yarn, pat_out);
       if (!pat_report.empty())

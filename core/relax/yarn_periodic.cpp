@@ -121,7 +121,7 @@ void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient) {
 }
 
 PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius) {
-  if (pattern.format == mesh::PatternFormat::Woven) return periodic_woven_patch(pattern, 4 * radius, radius);
+  if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: use periodic_woven_patch");
   const int rings = virtual_rings(pattern);
   PeriodicPatch patch;
   patch.tiles = 2 * rings + 3;

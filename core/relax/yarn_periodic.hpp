@@ -35,7 +35,7 @@ struct PeriodicPatch {
   Eigen::Vector3d period_x, period_y;  ///< the repeat's offsets [mm]
   int tiles = 0;                       ///< repeats along each side, the dropped ring included
 };
-/// Knits and tiles: from the stitch mesh of the tiled pattern, emitted with `library`. A virtual point is
+/// Knits and tiles (wovens: periodic_woven_patch): from the stitch mesh of the tiled pattern, emitted with `library`. A virtual point is
 /// matched to the centre point at its position less the repeat's offset; emitted points that match none
 /// (stitches at the borders) are frozen.
 PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius);

@@ -72,6 +72,17 @@ void YarnRelaxOptions::validate() const {
     throw Error("", "yarn relaxation", "a checkpoint interval needs a checkpoint file");
 }
 
+YarnParams radius_scaled(const YarnParams& params, double gamma) {
+  if (!(gamma > 0) || !std::isfinite(gamma)) throw Error("", "gamma", "the radius scale must be positive, found " + std::to_string(gamma));
+  YarnParams out = params;
+  out.k_bend *= gamma;                        // l' = gamma l, kappa' = kappa / gamma in l k_bend int kappa^2
+  out.k_contact /= gamma * gamma;             // the quadrature weights carry two rest lengths
+  out.k_dt /= gamma * gamma * gamma * gamma;
+  out.k_dn /= gamma * gamma * gamma * gamma;
+  out.k_global /= gamma * gamma;
+  return out;
+}
+
 YarnMethod parse_yarn_method(const std::string& name) {
   if (name == "euler") return YarnMethod::Euler;
   if (name == "fire") return YarnMethod::Fire;

@@ -28,6 +28,12 @@ struct YarnParams {
   void validate() const;
 };
 
+/// The stiffnesses that simulate yarn of radius r at radius gamma r (Leaf 2018 §6.2, eq. 4, for this model's
+/// energies): bending x gamma, contact x gamma^-2, contact damping x gamma^-4, global damping x gamma^-2,
+/// stretch and length unchanged. Relaxed at gamma r and scaled by 1/gamma, the yarn is that of the physical
+/// model with 1/gamma of the yarn length: a knob for take-up that keeps the spline segments.
+YarnParams radius_scaled(const YarnParams& params, double gamma);
+
 /// The energy of the yarn at `points` (intrinsic terms of every segment and contact between the given
 /// pairs) with its gradient; with `velocities`, also the damping forces (eqs. 11–12) into `damping`.
 double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,

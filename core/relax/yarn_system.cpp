@@ -26,9 +26,25 @@ bool YarnSystem::adjacent(int a, int b) const { return model::adjacent(segment_v
 
 bool YarnSystem::consecutive(int a, int b) const { return model::consecutive(segment_view(*this), a, b); }
 
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, const std::map<std::string, double>& take_up_by_type) {
   if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
   if (!(take_up > 0) || !std::isfinite(take_up)) throw Error("", "", "the yarn take-up must be positive, found " + std::to_string(take_up));
+  // Per point type: the take-up of the segments that start there.
+  std::vector<double> type_take_up(curves.type_names.size(), 1.0);
+  for (const auto& [name, factor] : take_up_by_type) {
+    if (!(factor > 0) || !std::isfinite(factor)) throw Error("", "take-up of " + name, "must be positive, found " + std::to_string(factor));
+    const auto it = std::find(curves.type_names.begin(), curves.type_names.end(), name);
+    if (it == curves.type_names.end()) {
+      std::string known;
+      for (const auto& t : curves.type_names) known += (known.empty() ? "" : " ") + t;
+      throw Error("", "take-up of " + name, "the yarn has no stitch of that type; it has: " + known);
+    }
+    type_take_up[it - curves.type_names.begin()] = factor;
+  }
+  const auto factor_at = [&](int point) {
+    const int type = point < static_cast<int>(curves.point_type.size()) ? curves.point_type[point] : -1;
+    return type >= 0 && type < static_cast<int>(type_take_up.size()) ? type_take_up[type] : 1.0;
+  };
   YarnSystem s;
   s.radius = curves.radius;
   s.closed = curves.closed;
@@ -52,7 +68,7 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up) {
       if (!((s.points.col(at(k + 1)) - s.points.col(at(k))).norm() > 0))
         throw Error("", "curve " + std::to_string(c) + " points " + std::to_string(at(k)) + " and " + std::to_string(at(k + 1)),
                     "two consecutive control points coincide");
-      s.rest_length.push_back(spline_length(s.points, s.segment_points.back()) * take_up);
+      s.rest_length.push_back(spline_length(s.points, s.segment_points.back()) * take_up * factor_at(at(k)));
       s.arc_start.push_back(s.curve_length[c]);
       s.curve_length[c] += s.rest_length.back();
       s.mass[at(k)] += 0.5 * s.rest_length.back();

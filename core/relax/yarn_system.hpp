@@ -1,5 +1,7 @@
 #pragma once
 #include <array>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,9 +45,12 @@ struct YarnSystem {
 /// Arc length of one Catmull-Rom segment (p0 p1 p2 p3) [mm].
 double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& segment);
 
-/// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`.
-/// Throws skein::Error when the yarn has no segment, a non-positive radius or coincident control points.
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0);
+/// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`,
+/// and times `take_up_by_type[name]` for segments that start in a stitch (or weft, warp) of that type (Leaf
+/// 2018 §6.1: more or less yarn for slip stitches, or along the warp or the weft). Throws skein::Error when the
+/// yarn has no segment, a non-positive radius or take-up, coincident control points, or a take-up names a
+/// type the yarn does not have.
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {});
 
 /// Writes the system's control points back into a copy of `curves` (same structure).
 mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points);

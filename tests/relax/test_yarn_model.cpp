@@ -8,6 +8,7 @@
 #include "relax/yarn_relax.hpp"
 #include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
@@ -211,4 +212,20 @@ TEST(YarnSystem, RejectsBadYarn) {
   yarn = skein::testing::linked_rings();
   yarn.points[1] = yarn.points[0];
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn); }).find("consecutive control points coincide"), std::string::npos);
+}
+
+TEST(YarnSystem, TakeUpPerStitchTypeScalesOnlyThatTypesSegments) {
+  const auto pattern = mesh::parse_pattern("format knit\nk k s k\n", "slip.knit");
+  const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 2, 2), mesh::StitchLibrary::bundled(), {});
+  const auto plain = make_yarn_system(yarn), slipped = make_yarn_system(yarn, 1.0, {{"s", 0.8}});
+  const int s_type = static_cast<int>(std::find(yarn.type_names.begin(), yarn.type_names.end(), "s") - yarn.type_names.begin());
+  int scaled = 0;
+  for (int k = 0; k < plain.num_segments(); ++k) {
+    const bool in_slip = yarn.point_type[plain.segment_points[k][1]] == s_type;
+    EXPECT_NEAR(slipped.rest_length[k], plain.rest_length[k] * (in_slip ? 0.8 : 1.0), 1e-12);
+    scaled += in_slip;
+  }
+  EXPECT_GT(scaled, 0);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"q", 0.8}}); }).find("the yarn has no stitch of that type"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s", -1}}); }).find("must be positive"), std::string::npos);
 }

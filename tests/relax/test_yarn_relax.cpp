@@ -346,7 +346,8 @@ TEST(YarnPeriodic, EveryBundledPatternConvergesWithoutPullThrough) {
     if (ext != ".knit" && ext != ".weave") continue;
     SCOPED_TRACE(entry.path().filename().string());
     const auto pattern = mesh::read_pattern(entry.path());
-    auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+    auto patch = pattern.format == mesh::PatternFormat::Woven ? periodic_woven_patch(pattern, 2.4, 0.6)
+                                                               : periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
     ShapeTargets targets;
     targets.periodic = patch.map;
     const auto run = relaxed(make_yarn_system(patch.yarn), {}, targets);
@@ -355,4 +356,40 @@ TEST(YarnPeriodic, EveryBundledPatternConvergesWithoutPullThrough) {
     ++patterns;
   }
   EXPECT_GE(patterns, 28);
+}
+
+TEST(YarnPeriodic, RadiusScalingMatchesThePhysicalModel) {
+  // Leaf 2018 §6.2: relax at gamma r with the stiffnesses of eq. 4, scale by 1/gamma; against the physical
+  // model itself: the same start scaled by 1/gamma (so 1/gamma of the yarn length) at radius r.
+  const double r = 0.6, gamma = 1.25;
+  const auto pattern = mesh::parse_pattern("format knit\np k\nk p\n", "seed.knit");
+  const auto scaled = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, gamma * r);
+  auto physical = scaled;
+  for (auto& p : physical.yarn.points) p /= gamma;
+  physical.yarn.radius = r;
+  for (auto& d : physical.map.offsets) d /= gamma;
+  YarnRelaxOptions options;
+  options.audit = false;
+  options.tolerance = 1e-3;
+  ShapeTargets a, b;
+  a.periodic = scaled.map;
+  b.periodic = physical.map;
+  auto scaled_options = options;
+  scaled_options.params = radius_scaled(options.params, gamma);
+  const auto system_a = make_yarn_system(scaled.yarn), system_b = make_yarn_system(physical.yarn);
+  const auto run_a = relaxed(system_a, scaled_options, a);
+  const auto run_b = relaxed(system_b, options, b);
+  ASSERT_TRUE(run_a.report.converged && run_b.report.converged);
+  EXPECT_NEAR(run_a.report.energy, run_b.report.energy, 1e-2 * run_b.report.energy);  // eq. 4 keeps every energy term
+  double sum = 0;
+  long n = 0;
+  for (int p = 0; p < system_a.num_points(); ++p)
+    if (scaled.ring[p] == 0) {
+      sum += (run_a.state.points.col(p) / gamma - run_b.state.points.col(p)).squaredNorm();
+      ++n;
+    }
+  const double rms = std::sqrt(sum / n) / r;
+  std::printf("radius scaling gamma %.2f against the physical model: RMS %.4f r, energies %.6g and %.6g\n", gamma, rms, run_a.report.energy,
+              run_b.report.energy);
+  EXPECT_LT(rms, 0.05);
 }
