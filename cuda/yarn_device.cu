@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
@@ -994,37 +995,43 @@ DeviceYarn::DeviceYarn(const relax::YarnSystem& system, const relax::ShapeTarget
 
 DeviceYarn::~DeviceYarn() = default;
 
+namespace {
+/// The controller between the device's scalars and a YarnState: into the scalars from a const state, out of
+/// them into a mutable one.
+template <class State>
+void exchange(Scalars& s, State& state) {
+  constexpr bool to_device = std::is_const_v<State>;
+  const auto move = [](auto& device, auto& host) {
+    if constexpr (to_device) device = static_cast<std::remove_reference_t<decltype(device)>>(host);
+    else host = static_cast<std::remove_cvref_t<decltype(host)>>(device);
+  };
+  move(s.step, state.step);
+  move(s.time_step, state.time_step);
+  move(s.alpha, state.fire_alpha);
+  move(s.positive, state.fire_positive);
+  move(s.residual0, state.residual0);
+  move(s.residual_prev, state.residual_prev);
+  auto& g = state.guard;  // GuardCounters, in Counter order
+  decltype(&g.steps) counters[kCounters] = {&g.steps, &g.rate_limited, &g.pairs_tested, &g.pairs_skipped, &g.sphere_tests, &g.finest_hits, &g.halvings, &g.held_points};
+  for (int k = 0; k < kCounters; ++k) move(s.counters[k], *counters[k]);
+}
+}  // namespace
+
 void DeviceYarn::set_state(const relax::YarnState& state) {
   m->x.upload(state.points);
   m->v.upload(state.velocities);
   m->good_x.copy_from(m->x, m->points);
   m->good_v.copy_from(m->v, m->points);
   Scalars s{};
-  s.step = state.step;
-  s.time_step = state.time_step;
-  s.alpha = state.fire_alpha;
-  s.positive = state.fire_positive;
-  s.residual0 = state.residual0;
-  s.residual_prev = state.residual_prev;
-  const long counters[kCounters] = {state.guard.steps,        state.guard.rate_limited, state.guard.pairs_tested, state.guard.pairs_skipped,
-                                    state.guard.sphere_tests, state.guard.finest_hits,  state.guard.halvings,     state.guard.held_points};
-  for (int k = 0; k < kCounters; ++k) s.counters[k] = static_cast<unsigned long long>(counters[k]);
+  exchange(s, state);
   m->write_scalars(s);
 }
 
 void DeviceYarn::get_state(relax::YarnState& state) const {
-  const Scalars s = m->read_scalars();
+  Scalars s = m->read_scalars();
   m->x.download(state.points, m->points);
   m->v.download(state.velocities, m->points);
-  state.step = s.step;
-  state.time_step = s.time_step;
-  state.fire_alpha = s.alpha;
-  state.fire_positive = s.positive;
-  state.residual0 = s.residual0;
-  state.residual_prev = s.residual_prev;
-  long* counters[kCounters] = {&state.guard.steps,        &state.guard.rate_limited, &state.guard.pairs_tested, &state.guard.pairs_skipped,
-                               &state.guard.sphere_tests, &state.guard.finest_hits,  &state.guard.halvings,     &state.guard.held_points};
-  for (int k = 0; k < kCounters; ++k) *counters[k] = static_cast<long>(s.counters[k]);
+  exchange(s, state);
 }
 
 void DeviceYarn::get_points(Eigen::Matrix3Xd& points) const {
