@@ -138,8 +138,18 @@ PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLib
     for (int copy = 0; copy < patch.tiles; ++copy)
       for (int t = 0; t < per_copy; ++t) face_repeat.emplace_back(copy, r / pattern.height());
   }
+  // Points of no face (cables, on the course line above their row) go by position: the repeat of the row below.
   std::vector<std::pair<int, int>> repeat;
-  for (int f : patch.yarn.point_face) repeat.push_back(f >= 0 && f < static_cast<int>(face_repeat.size()) ? face_repeat[f] : std::pair{-1, -1});
+  for (size_t p = 0; p < patch.yarn.points.size(); ++p) {
+    const int f = patch.yarn.point_face[p];
+    if (f >= 0 && f < static_cast<int>(face_repeat.size())) {
+      repeat.push_back(face_repeat[f]);
+      continue;
+    }
+    const Eigen::Vector3d& x = patch.yarn.points[p];
+    const int a = static_cast<int>(std::floor(x.x() / patch.period_x.x())), b = static_cast<int>(std::floor((x.y() - 0.5 * size.height) / patch.period_y.y()));
+    repeat.push_back(a >= 0 && a < patch.tiles && b >= 0 && b < patch.tiles ? std::pair{a, b} : std::pair{-1, -1});
+  }
   map_points(patch, repeat, rings);
   drop_frozen(patch);
   return patch;

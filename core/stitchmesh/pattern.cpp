@@ -1,6 +1,8 @@
 #include "stitchmesh/pattern.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -133,8 +135,19 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     std::vector<std::string> row;
     for (const auto& t : it->tokens) {
       if (p.format == PatternFormat::Knit) {
+        int over = 0, under = 0;
+        char order = '+', tail = 0;
+        const int fields = std::sscanf(t.text.c_str(), "cable%dx%d%c%c", &over, &under, &order, &tail);
+        if (t.text.rfind("cable", 0) == 0 && fields >= 2) {
+          if (over < 1 || over > 3 || under < 1 || under > 3 || fields == 4 || (fields == 3 && order != '+' && order != '-'))
+            throw Error(source, at(it->line, t.column), "a cable is cableAxB, cableAxB+ (in front) or cableAxB- (behind) with A and B from 1 to 3, found '" + t.text + "'");
+          p.cables.push_back({static_cast<int>(p.rows.size()), loops_made(row), over, under, order == '-' ? -1 : 1});
+          row.insert(row.end(), over + under, "k");
+          continue;
+        }
         if (!find_stitch_type(t.text))
-          throw Error(source, at(it->line, t.column), "unknown stitch '" + t.text + "'; the stitch types are: " + known_types());
+          throw Error(source, at(it->line, t.column),
+                      "unknown stitch '" + t.text + "'; the stitch types are: " + known_types() + ", and cables cableAxB[+|-]");
         row.push_back(t.text);
         continue;
       }
@@ -211,6 +224,14 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
         mesh.faces.push_back(std::move(face));
         a += type.bottom;
       }
+    // Cables: the course edges above their stitches, unless this is the top row.
+    if (r + 1 < up * pattern.height())
+      for (int copy = 0; copy < across; ++copy)
+        for (const auto& cable : pattern.cables) {
+          if (cable.row != r % pattern.height()) continue;
+          const int first = copy * loops_made(row) + cable.first_loop;
+          for (int k = first; k < first + cable.over + cable.under; ++k) mesh.cables[std::minmax(top[k], top[k + 1])] = {cable.over, cable.order};
+        }
     bottom = std::move(top);
   }
   return mesh;

@@ -17,12 +17,21 @@ enum class PatternFormat {
   Woven,  ///< 0/1 matrix: 1 = the weft (row) over the warp (column) (Leaf §4)
 };
 
+/// A cable in a knit pattern (Yuksel 2012 §4.5): on the knit stitches of its row whose new loops are
+/// first_loop .. first_loop + over + under (counted along the row's top), the first `over` loops cross right over the next `under` ones (cableAxB), in front
+/// (order +1) or behind (-1), on their way into the row above.
+struct PatternCable {
+  int row = 0, first_loop = 0, over = 1, under = 1, order = 1;
+};
+
 struct Pattern {
   std::string name;   ///< from "# name:", else the file's stem
   std::string note;   ///< from "# source:": where the pattern comes from
   PatternFormat format = PatternFormat::Knit;
   /// Knit and tile patterns: per row, bottom row first, the stitch types (tile codes already mapped).
   std::vector<std::vector<std::string>> rows;
+  /// Knits: the cables, rows counted as in `rows`.
+  std::vector<PatternCable> cables;
   /// Woven patterns: per weft row, bottom row first, per warp column: 1 when the weft lies over the warp.
   std::vector<std::vector<char>> over;
 
@@ -38,7 +47,8 @@ Pattern read_pattern(const std::filesystem::path& file);
 Pattern parse_pattern(const std::string& text, const std::string& source);
 
 /// A flat stitch mesh in the z = 0 plane of a knit pattern repeated `across` times along the course and
-/// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Valid by construction.
+/// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Cables become cable marks on the course
+/// edges above their stitches (none in the top row: nothing is above it). Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
 
 /// Tiles a knit pattern over `faces` of a stitch mesh (Yuksel 2012 §5.3): the stitch `origin` takes the

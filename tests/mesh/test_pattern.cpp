@@ -147,3 +147,24 @@ TEST(Pattern, TilingRefusesWhatItCannotPlace) {
   const auto weave = parse_pattern("format woven\n10\n01\n", "w.weave");
   EXPECT_THROW(tile_pattern(piece, faces, weave, 0), Error);
 }
+
+TEST(Pattern, CablesBecomeCableMarksAboveTheirStitches) {
+  const auto p = parse_pattern("format knit\np k k k k p\np cable2x2- p\n", "cable.knit");
+  ASSERT_EQ(p.cables.size(), 1u);
+  EXPECT_EQ(p.cables[0].row, 0);
+  EXPECT_EQ(p.cables[0].first_loop, 1);
+  EXPECT_EQ(p.cables[0].order, -1);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"p", "k", "k", "k", "k", "p"}));
+  const auto mesh = pattern_stitch_mesh(p, 2, 2);
+  EXPECT_TRUE(validate(mesh).valid()) << validate(mesh).summary();
+  EXPECT_EQ(mesh.cables.size(), 2u * 2u * 4u);  // two copies across, in rows 0 and 2 (row 3 is the top: nothing above it)
+  for (const auto& [edge, mark] : mesh.cables) {
+    EXPECT_EQ(mark.shift, 2);
+    EXPECT_EQ(mark.order, -1);
+  }
+  mesh::EmitReport report;
+  emit_yarn(mesh, StitchLibrary::bundled(), {}, &report);
+  EXPECT_EQ(report.cables, 4);
+  EXPECT_NE(error_in("format knit\ncable4x1\n").find("a cable is cableAxB"), std::string::npos);
+  EXPECT_NE(error_in("format knit\ncable2x2*\n").find("a cable is cableAxB"), std::string::npos);
+}
