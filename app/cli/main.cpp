@@ -474,6 +474,8 @@ int main(int argc, char** argv) {
   pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
   std::vector<std::string> pat_take_up_stitch;
   pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
+  std::string pat_period;
+  pat->add_option("--period", pat_period, "with --relax: the repeat's period x its emitted size, along the course x the wale (e.g. 0.9x1)");
   double pat_gamma = 1;
   pat->add_option("--gamma", pat_gamma, "with --relax: relax at gamma x the yarn radius and scale back by 1/gamma: 1/gamma of the yarn length (Leaf 2018 §6.2)")
       ->check(CLI::Range(0.25, 4.0))->capture_default_str();
@@ -822,7 +824,16 @@ int main(int argc, char** argv) {
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
         pat_extra["gamma"] = pat_gamma;
-        const auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch));
+        auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch));
+        if (!pat_period.empty()) {
+          double sx = 0, sy = 0;
+          char tail = 0;
+          if (targets.periodic.empty()) throw Error("", "--period", "needs the periodic patch (not --tiled)");
+          if (std::sscanf(pat_period.c_str(), "%lfx%lf%c", &sx, &sy, &tail) != 2)
+            throw Error("", "--period", "expected SXxSY (e.g. 0.9x1), found '" + pat_period + "'");
+          relax::scale_period(targets.periodic, system.points, sx, sy);  // rest lengths stay those of the emitted yarn
+          pat_extra["period"] = {sx, sy};
+        }
         auto state = relax::initial_state(system, pat_options);
         return relax_and_write(yarn, system, targets, pat_options, state,
                                {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra, pat_panel,

@@ -115,6 +115,17 @@ void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matr
   }
 }
 
+void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double sy) {
+  if (!(sx > 0 && sy > 0 && std::isfinite(sx) && std::isfinite(sy)))
+    throw Error("", "period", "the period scales must be positive, found " + std::to_string(sx) + " x " + std::to_string(sy));
+  points.row(0) *= sx;
+  points.row(1) *= sy;
+  for (auto& d : map.offsets) {
+    d.x() *= sx;
+    d.y() *= sy;
+  }
+}
+
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient) {
   for (int p : map.virtual_points) gradient.col(p).setZero();
   for (int p : map.frozen) gradient.col(p).setZero();

@@ -42,6 +42,11 @@ PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLib
 /// Wovens: crossings `spacing` apart.
 PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing, double radius);
 
+/// An adjustable repeat period: the patch squeezed or stretched by `sx` along the course (x) and `sy` along the
+/// wale (y), positions and offsets alike, so that every virtual point stays its real point plus its offset.
+/// Take the yarn's rest lengths before (make_yarn_system on the unscaled yarn), so the yarn keeps its length.
+void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double sy);
+
 /// Zeroes the gradient of virtual and frozen points: they are not degrees of freedom, so neither the
 /// integrator nor the convergence test (Leaf eq. 5) may count them.
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);

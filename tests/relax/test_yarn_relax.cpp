@@ -6,6 +6,7 @@
 
 #include <omp.h>
 
+#include "common/error.hpp"
 #include "relax/pull_through_guard.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -392,4 +393,24 @@ TEST(YarnPeriodic, RadiusScalingMatchesThePhysicalModel) {
   std::printf("radius scaling gamma %.2f against the physical model: RMS %.4f r, energies %.6g and %.6g\n", gamma, rms, run_a.report.energy,
               run_b.report.energy);
   EXPECT_LT(rms, 0.05);
+}
+
+TEST(YarnPeriodic, AScaledPeriodKeepsVirtualPointsOnTheirRealOnesAndTheYarnLength) {
+  const auto pattern = mesh::parse_pattern("format knit\nk k p p\nk k p p\n", "rib.knit");
+  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  auto system = make_yarn_system(patch.yarn);
+  const auto rest = system.rest_length;
+  ShapeTargets targets;
+  targets.periodic = patch.map;
+  scale_period(targets.periodic, system.points, 0.9, 1.05);
+  EXPECT_NEAR(targets.periodic.offsets[0].x(), 0.9 * patch.map.offsets[0].x(), 1e-12);
+  for (size_t i = 0; i < targets.periodic.virtual_points.size(); ++i)
+    EXPECT_LT((system.points.col(targets.periodic.virtual_points[i]) - system.points.col(targets.periodic.real_points[i]) - targets.periodic.offsets[i]).norm(),
+              1e-9);
+  EXPECT_EQ(system.rest_length, rest);
+  YarnRelaxOptions options;
+  options.audit = false;
+  const auto run = relaxed(system, options, targets);
+  EXPECT_TRUE(run.report.converged) << run.report.stopped_by;
+  EXPECT_THROW(scale_period(targets.periodic, system.points, 0, 1), skein::Error);
 }
