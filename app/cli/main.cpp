@@ -461,7 +461,7 @@ int main(int argc, char** argv) {
   relax::YarnRelaxOptions pat_options;
   pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
   pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
-  pat->add_option("--tile", pat_tile, "repeats across x up (NxM)")->capture_default_str();
+  pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, or with --relax --tiled (the periodic patch has its own)")->capture_default_str();
   bool pat_tiled = false;
   pat->add_flag("--relax", pat_relax, "relax the pattern's periodic patch (Leaf 2018 §5; FIRE, pull-through guard) and write it");
   pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
