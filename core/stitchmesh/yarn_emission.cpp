@@ -108,7 +108,12 @@ private:
       const int lo = std::min(a, b), hi = std::max(a, b);
       const double t = wale ? (slot == 0 ? kWaleCrossing : 1 - kWaleCrossing) : kCourseSlots[slot];
       const Eigen::Vector3d& pl = m_mesh.vertices[lo];
-      m_node_pos.push_back(pl + t * (m_mesh.vertices[hi] - pl));
+      Eigen::Vector3d pos = pl + t * (m_mesh.vertices[hi] - pl);
+      // A cable edge has two crossings at each slot: the stitch below's into the cable (side 1) and the
+      // cable's into the stitch above (side 2). Two yarns cannot share a point, so each sits one yarn radius
+      // toward its stitch (at most 0.4 of the way to the stitch's centre), and the cable spans the gap.
+      if (side != 0) pos = toward_stitch(a, b, side == 1, pos);
+      m_node_pos.push_back(pos);
       m_node_border.push_back(m_table.at(edge_key(a, b)).count == 1);
       m_node_ends.emplace_back();
     }
@@ -116,6 +121,21 @@ private:
   }
 
   bool is_cable(int a, int b) const { return m_cable_edge.count(edge_key(a, b)) > 0; }
+
+  /// `pos` moved one yarn radius toward the centre of the stitch below the course edge a-b (or above it).
+  Eigen::Vector3d toward_stitch(int a, int b, bool below, const Eigen::Vector3d& pos) const {
+    const auto& uses = m_table.at(edge_key(a, b));
+    for (int k = 0; k < uses.count; ++k) {
+      const auto& face = m_mesh.faces[uses.use[k].face];
+      if (face.is_top(uses.use[k].local) != below) continue;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (int v : face.vertices) centre += m_mesh.vertices[v];
+      const Eigen::Vector3d to = centre / static_cast<double>(face.size()) - pos;
+      const double d = to.norm();
+      return d > 0 ? Eigen::Vector3d(pos + std::min(m_radius, 0.4 * d) / d * to) : pos;
+    }
+    return pos;
+  }
 
   /// The node of a model crossing on face f.
   int crossing_node(int f, const Crossing& c) {

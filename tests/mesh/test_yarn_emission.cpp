@@ -144,6 +144,18 @@ TEST(YarnEmission, CableFaceCrossesLoops) {
   EXPECT_EQ(y.curves(), 1);
   EXPECT_NE(std::find(y.type_names.begin(), y.type_names.end(), "cable2x2"), y.type_names.end());
   expect_continuous(s, y, "cable");
+  // Each slot of a cable edge has two crossings, into the cable from below and out of it above: a yarn
+  // radius to either side of the slot, never one point for two yarns.
+  for (const auto& [edge, mark] : s.cables) {
+    const Eigen::Vector3d a = s.vertices[edge.first], b = s.vertices[edge.second];
+    for (double t : mesh::kCourseSlots) {
+      const Eigen::Vector3d slot = a + t * (b - a);
+      int near = 0;
+      for (const auto& q : y.points) near += std::abs((q - slot).norm() - 0.6) < 1e-9;
+      EXPECT_EQ(points_at(y, slot), 0);
+      EXPECT_EQ(near, 2);
+    }
+  }
   // A cable of 4 over 1 has no model.
   auto wide = stitched(models::swatch());
   wide = mesh::mark_cable(wide, mesh::top_edge_path(wide, 5, 2, 7), 4, 1);
