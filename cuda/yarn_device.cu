@@ -175,8 +175,9 @@ struct Dev {
   relax::YarnStepLog* logs;
 };
 
+/// The sum (or, for moves, which are never negative, the largest) of a slot's partials, in a fixed order.
 __device__ double finish(const Dev& d, int slot, bool max) {
-  double acc = max ? 0.0 : 0.0;
+  double acc = 0;
   const double* p = d.partial + slot * kReduceBlocks;
   for (int b = 0; b < kReduceBlocks; ++b) acc = max ? fmax(acc, p[b]) : acc + p[b];
   return acc;

@@ -98,8 +98,6 @@ Backend parse_backend(const std::string& name) {
   throw Error("", "--backend", "expected auto, cpu or cuda, found '" + name + "'");
 }
 
-std::string to_string(Backend backend) { return backend == Backend::Auto ? "auto" : backend == Backend::Cpu ? "cpu" : "cuda"; }
-
 double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
                    Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities, Eigen::Matrix3Xd* damping) {
   const int segments = system.num_segments();

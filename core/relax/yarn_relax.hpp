@@ -50,7 +50,6 @@ std::string to_string(YarnMethod method);
 /// CPU; the choice is logged (skein::cuda::make_yarn_relaxer).
 enum class Backend { Auto, Cpu, Cuda };
 Backend parse_backend(const std::string& name);  ///< "auto", "cpu" or "cuda"; throws skein::Error otherwise
-std::string to_string(Backend backend);
 
 struct YarnRelaxOptions {
   YarnMethod method = YarnMethod::Fire;
