@@ -44,7 +44,8 @@ public:
       long stop_at = m_options.max_steps;
       if (m_options.checkpoint_every > 0) stop_at = std::min(stop_at, (step / m_options.checkpoint_every + 1) * m_options.checkpoint_every);
       const bool out_of_time = m_options.max_seconds > 0 && seconds_since(started) >= m_options.max_seconds;
-      if (out_of_time) stop_at = step;  // evaluate the current state once more, for the report
+      const bool interrupted = m_options.interrupt && m_options.interrupt->load();
+      if (out_of_time || interrupted) stop_at = step;  // evaluate the current state once more, for the report
       if (m_options.audit) m_device.get_points(before);
       status = m_device.run(stop_at, m_options.audit ? 1 : kBatch, logs);
       if (m_options.audit && !logs.empty()) {
@@ -75,6 +76,10 @@ public:
       }
       if (status.halt == Halt::StopAt && out_of_time) {
         report.stopped_by = "time cap";
+        break;
+      }
+      if (status.halt == Halt::StopAt && interrupted) {
+        report.stopped_by = "interrupted";
         break;
       }
       if (status.halt == Halt::StopAt && step >= m_options.max_steps) {

@@ -331,6 +331,7 @@ MeshRelaxReport MeshRelaxer::run(const std::function<void(const MeshRelaxStep&)>
       report.converged = true;
       break;
     }
+    if (m->options.interrupt && m->options.interrupt->load()) break;
   }
   if (m->options.max_steps == 0) report.converged = false;
   return report;

@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -24,6 +25,8 @@ struct MeshRelaxOptions {
   int cg_iterations = 60;
   double cg_tolerance = 1e-4;  ///< relative residual of the modified CG
   int samples_per_edge = 8;    ///< fine triangles: samples along each ptex face edge
+  /// When set and it turns true, run() returns after the step in progress (the app's stop button).
+  const std::atomic<bool>* interrupt = nullptr;
   void validate() const;       ///< throws skein::Error naming the option
 };
 

@@ -227,6 +227,10 @@ public:
         report.stopped_by = "time cap";
         break;
       }
+      if (m_options.interrupt && m_options.interrupt->load()) {
+        report.stopped_by = "interrupted";
+        break;
+      }
 
       const GuardCounters before = m_guard->counters();
       const double dt = propose(state, grad, damping, limit, delta);

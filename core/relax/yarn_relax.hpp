@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -67,6 +68,9 @@ struct YarnRelaxOptions {
   std::filesystem::path checkpoint;  ///< written atomically every checkpoint_every steps / minutes
   long checkpoint_every = 0;
   double checkpoint_minutes = 0;
+  /// When set and it turns true, the run stops after the step in progress (stopped_by "interrupted"); the
+  /// state is then whole and a later run() goes on from it (pause and stop in the app).
+  const std::atomic<bool>* interrupt = nullptr;
   void validate() const;
 };
 
@@ -94,7 +98,7 @@ struct YarnStepLog {
 /// Outcome of a run; not converging is a result, not an exception.
 struct YarnRelaxReport {
   bool converged = false;
-  std::string stopped_by;     ///< "converged", "step cap", "time cap", "diverged"
+  std::string stopped_by;     ///< "converged", "step cap", "time cap", "interrupted", "diverged"
   long steps = 0;
   double wall_seconds = 0, residual = 0, energy = 0;
   long contacts = 0;          ///< contact pairs at the end

@@ -1,0 +1,143 @@
+#include "relax_jobs.hpp"
+
+#include "cuda/yarn_relaxer.hpp"
+#include "relax/yarn_shape.hpp"
+#include "relax/yarn_system.hpp"
+
+namespace skein::gui {
+
+QString RelaxJob::error() const {
+  std::lock_guard lock(m_mutex);
+  return m_error;
+}
+
+RelaxJob::Progress RelaxJob::progress() const {
+  std::lock_guard lock(m_mutex);
+  return m_progress;
+}
+
+bool RelaxJob::due() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - m_last < std::chrono::milliseconds(200)) return false;
+  m_last = now;
+  return true;
+}
+
+void RelaxJob::fail(const QString& reason) {
+  std::lock_guard lock(m_mutex);
+  m_error = reason;
+  m_progress.stopped_by = tr("failed");
+}
+
+MeshRelaxJob::MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, relax::MeshRelaxOptions options, QObject* parent)
+    : RelaxJob(parent), m_control_points(input.points()), m_control_faces(input.faces()), m_options(options), m_stitch(std::move(stitch)) {
+  m_options.interrupt = &m_interrupt;
+  m_progress.max_steps = m_options.max_steps;
+}
+
+MeshRelaxJob::~MeshRelaxJob() {
+  interrupt();
+  wait();
+}
+
+mesh::StitchMesh MeshRelaxJob::stitch() const {
+  std::lock_guard lock(m_mutex);
+  return m_stitch;
+}
+
+RestSize MeshRelaxJob::rest() const {
+  std::lock_guard lock(m_mutex);
+  return m_rest;
+}
+
+void MeshRelaxJob::run() {
+  m_interrupt = false;
+  try {
+    relax::MeshRelaxer relaxer(m_control_points, m_control_faces, m_stitch, m_options);
+    {
+      std::lock_guard lock(m_mutex);
+      m_rest = {relaxer.r_course(), relaxer.r_wale()};
+    }
+    const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+      const bool publish = due();
+      {
+        std::lock_guard lock(m_mutex);
+        m_progress.step = s.step;
+        m_progress.energy = s.energy;
+        m_progress.measure = s.max_displacement;
+        if (publish) m_stitch = relaxer.relaxed();
+      }
+      if (publish) emit updated();
+    });
+    std::lock_guard lock(m_mutex);
+    m_stitch = relaxer.relaxed();
+    m_progress.converged = report.converged;
+    m_progress.stopped_by = report.converged ? tr("converged") : m_interrupt ? tr("interrupted") : tr("step cap");
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(e.what()));
+  }
+  emit updated();
+}
+
+YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
+                           QObject* parent)
+    : RelaxJob(parent), m_yarn(std::move(yarn)), m_system(relax::make_yarn_system(m_yarn)), m_options(options), m_backend(backend) {
+  m_targets = relax::shape_targets(stitch, m_yarn, m_options.shape);
+  m_options.interrupt = &m_interrupt;
+  m_progress.max_steps = m_options.max_steps;
+  m_points = m_system.points;
+}
+
+YarnRelaxJob::~YarnRelaxJob() {
+  interrupt();
+  wait();
+}
+
+mesh::YarnCurves YarnRelaxJob::yarn() const {
+  std::lock_guard lock(m_mutex);
+  return relax::with_points(m_yarn, m_points);
+}
+
+QString YarnRelaxJob::backend() const {
+  std::lock_guard lock(m_mutex);
+  return m_backend_name;
+}
+
+void YarnRelaxJob::publish(const relax::YarnStepLog& log) {
+  const bool shape = due();
+  {
+    std::lock_guard lock(m_mutex);
+    m_progress.step = log.step;
+    m_progress.energy = log.energy;
+    m_progress.measure = log.residual;
+    if (shape) m_points = m_state.points;
+  }
+  if (shape) emit updated();
+}
+
+void YarnRelaxJob::run() {
+  m_interrupt = false;
+  {
+    std::lock_guard lock(m_mutex);
+    m_progress.stopped_by.clear();
+  }
+  try {
+    if (!m_relaxer) {
+      m_relaxer = cuda::make_yarn_relaxer(m_backend, m_system, m_targets, m_options);
+      m_state = relax::initial_state(m_system, m_options);
+    }
+    const auto report = m_relaxer->run(m_state, [&](const relax::YarnStepLog& log) { publish(log); });
+    std::lock_guard lock(m_mutex);
+    m_points = m_state.points;
+    m_backend_name = QString::fromStdString(report.backend);
+    m_progress.step = report.steps;
+    m_progress.converged = report.converged;
+    m_progress.stopped_by = QString::fromStdString(report.stopped_by);
+    m_progress.pull_through = report.pull_through_events;
+  } catch (const std::exception& e) {
+    fail(QString::fromStdString(e.what()));
+  }
+  emit updated();
+}
+
+}  // namespace skein::gui

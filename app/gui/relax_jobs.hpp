@@ -1,0 +1,103 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+
+#include <QString>
+#include <QThread>
+
+#include "document.hpp"
+#include "relax/mesh_relax.hpp"
+#include "relax/yarn_relax.hpp"
+
+namespace skein::gui {
+
+/// A relaxation on its own thread, so that the app stays responsive. The thread publishes its progress and
+/// latest shape under a lock, at most five times a second (`updated`); interrupt() ends the run after the step
+/// in progress, and for yarn start() goes on from there (pause and resume).
+class RelaxJob : public QThread {
+  Q_OBJECT
+public:
+  using QThread::QThread;
+  void interrupt() { m_interrupt = true; }
+  /// Why the job failed (a skein::Error's text); empty when it did not.
+  QString error() const;
+
+  struct Progress {
+    long step = 0, max_steps = 0;
+    double energy = 0;
+    double measure = 0;  ///< mesh: largest move [mm]; yarn: residual |∇E| / |∇E_0|
+    bool converged = false;
+    QString stopped_by;  ///< empty while running
+    long pull_through = -1;
+  };
+  Progress progress() const;
+
+signals:
+  void updated();
+
+protected:
+  /// True when a new shape is due for the live view (every 0.2 s).
+  bool due();
+  void fail(const QString& reason);
+
+  std::atomic<bool> m_interrupt{false};
+  mutable std::mutex m_mutex;  ///< guards what the thread publishes
+  Progress m_progress;
+  QString m_error;
+
+private:
+  std::chrono::steady_clock::time_point m_last{};
+};
+
+/// Mesh relaxation (Yuksel 2012 §6.1) of a stitch mesh on its input mesh's limit surface.
+class MeshRelaxJob final : public RelaxJob {
+  Q_OBJECT
+public:
+  MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, relax::MeshRelaxOptions options, QObject* parent = nullptr);
+  ~MeshRelaxJob() override;
+  mesh::StitchMesh stitch() const;  ///< the latest positions
+  RestSize rest() const;
+
+protected:
+  void run() override;
+
+private:
+  std::vector<Eigen::Vector3d> m_control_points;
+  std::vector<std::vector<int>> m_control_faces;
+  relax::MeshRelaxOptions m_options;
+  mesh::StitchMesh m_stitch;
+  RestSize m_rest;
+};
+
+/// Yarn relaxation (Yuksel 2012 §6.3, Leaf 2018 §3) with shape preservation from the stitch mesh, on the
+/// backend asked for (auto: the GPU when one answers, else the CPU).
+class YarnRelaxJob final : public RelaxJob {
+  Q_OBJECT
+public:
+  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
+               QObject* parent = nullptr);
+  ~YarnRelaxJob() override;
+  mesh::YarnCurves yarn() const;  ///< the latest points
+  QString backend() const;
+
+protected:
+  void run() override;
+
+private:
+  void publish(const relax::YarnStepLog& log);
+
+  mesh::YarnCurves m_yarn;
+  relax::YarnSystem m_system;
+  relax::ShapeTargets m_targets;
+  relax::YarnRelaxOptions m_options;
+  relax::Backend m_backend;
+  std::unique_ptr<relax::YarnRelaxer> m_relaxer;  ///< made on the first run, kept for resuming
+  relax::YarnState m_state;
+  Eigen::Matrix3Xd m_points;  ///< published copy of m_state.points
+  QString m_backend_name;
+};
+
+}  // namespace skein::gui

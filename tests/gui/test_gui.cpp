@@ -1,0 +1,348 @@
+// skein-gui workflows, driven the way a user drives them: actions, clicks and drags in the 3D view. Runs under
+// xvfb-run (QOpenGLWidget needs a real GL display; Qt's offscreen platform cannot host it). Each stage saves
+// a screenshot to $SKEIN_GUI_SHOTS (or a temporary folder) and checks that it is not blank.
+#include <QAction>
+#include <QApplication>
+#include <QDir>
+#include <QImage>
+#include <QMouseEvent>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QUndoStack>
+
+#include "common/error.hpp"
+#include "main_window.hpp"
+#include "relax/yarn_io.hpp"
+#include "render/stitch_view.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "viewport.hpp"
+
+using namespace skein;
+using gui::MainWindow;
+
+namespace {
+
+const QString kModels = QStringLiteral(SKEIN_MODELS_DIR);
+const QString kPatterns = QStringLiteral(SKEIN_PATTERNS_DIR);
+
+QString shots_dir() {
+  const QString dir = qEnvironmentVariableIsSet("SKEIN_GUI_SHOTS") ? qEnvironmentVariable("SKEIN_GUI_SHOTS") : QDir::temp().filePath("skein-gui-shots");
+  QDir().mkpath(dir);
+  return dir;
+}
+
+/// Saves the view as `name`.png and checks it is not blank: the model covers at least `min_cover` of the pixels,
+/// and each expected colour shows in at least 150 pixels. Colours are compared by chromaticity, since the
+/// shading scales them.
+void check_shot(MainWindow& w, const QString& name, const std::vector<Eigen::Vector3f>& colors, double min_cover = 0.08) {
+  QApplication::processEvents();
+  const QImage image = w.viewport().grabFramebuffer().convertToFormat(QImage::Format_RGB888);
+  QVERIFY(!image.isNull());
+  QVERIFY(image.save(QDir(shots_dir()).filePath(name + ".png")));
+  const QColor background = QColor::fromRgbF(0.93f, 0.94f, 0.96f);
+  long covered = 0;
+  std::vector<long> found(colors.size(), 0);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      if (std::abs(c.red() - background.red()) + std::abs(c.green() - background.green()) + std::abs(c.blue() - background.blue()) > 12) ++covered;
+      const Eigen::Vector3f rgb(c.redF(), c.greenF(), c.blueF());
+      if (rgb.sum() < 0.2f) continue;
+      for (size_t k = 0; k < colors.size(); ++k)
+        if ((rgb / rgb.sum() - colors[k] / colors[k].sum()).cwiseAbs().sum() < 0.02f) ++found[k];
+    }
+  const double cover = static_cast<double>(covered) / (image.width() * image.height());
+  QVERIFY2(cover >= min_cover, qPrintable(QString("%1: the model covers %2 of the view").arg(name).arg(cover)));
+  for (size_t k = 0; k < colors.size(); ++k)
+    QVERIFY2(found[k] >= 150, qPrintable(QString("%1: colour %2 shows in %3 pixels").arg(name).arg(k).arg(found[k])));
+}
+
+QAction* action(MainWindow& w, const char* name) {
+  auto* a = w.findChild<QAction*>(name);
+  if (!a) qFatal("no action %s", name);
+  return a;
+}
+
+/// A left-button stroke through the given model points, as a user drags.
+void drag_through(gui::Viewport& view, const std::vector<Eigen::Vector3d>& points) {
+  const auto send = [&](QEvent::Type type, const QPoint& at, Qt::MouseButtons buttons) {
+    QMouseEvent event(type, QPointF(at), view.mapToGlobal(QPointF(at)), Qt::LeftButton, buttons, Qt::NoModifier);
+    QApplication::sendEvent(&view, &event);
+  };
+  send(QEvent::MouseButtonPress, view.to_screen(points.front()), Qt::LeftButton);
+  for (size_t i = 1; i < points.size(); ++i) send(QEvent::MouseMove, view.to_screen(points[i]), Qt::LeftButton);
+  send(QEvent::MouseButtonRelease, view.to_screen(points.back()), Qt::NoButton);
+}
+
+Eigen::Vector3d centroid(const mesh::StitchMesh& s, int f) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : s.faces[f].vertices) c += s.vertices[v];
+  return c / s.faces[f].size();
+}
+
+/// The stitch in the middle of the middle row.
+int middle_face(const mesh::StitchMesh& s) {
+  const auto rows = mesh::faces_by_row(s);
+  const auto& row = rows[rows.size() / 2];
+  return row[row.size() / 2];
+}
+
+bool same(const gui::EditState& a, const gui::EditState& b) {
+  const bool labels = a.labels.has_value() == b.labels.has_value() &&
+                      (!a.labels || (a.labels->edges == b.labels->edges && a.labels->rows == b.labels->rows &&
+                                     std::equal(a.labels->faces.begin(), a.labels->faces.end(), b.labels->faces.begin(), b.labels->faces.end(),
+                                                [](const auto& x, const auto& y) { return x.row == y.row && x.left == y.left && x.right == y.right; })));
+  const bool values = a.values.has_value() == b.values.has_value() && (!a.values || (a.values->edge == b.values->edge && a.values->marked == b.values->marked));
+  const bool yarn = a.yarn.has_value() == b.yarn.has_value() && (!a.yarn || a.yarn->points == b.yarn->points);
+  return labels && values && yarn && a.stitch == b.stitch && a.rest == b.rest && a.yarn_relaxed == b.yarn_relaxed &&
+         a.stitch_size.width == b.stitch_size.width && a.stitch_size.height == b.stitch_size.height;
+}
+
+}  // namespace
+
+class GuiTest : public QObject {
+  Q_OBJECT
+
+private slots:
+  void a_bad_file_shows_an_error() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QTemporaryDir dir;
+    const QString bad = dir.filePath("broken.obj");
+    QFile file(bad);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    file.close();
+    QVERIFY(!w.open_file(bad));
+    QVERIFY2(w.last_error().contains("broken.obj"), qPrintable(w.last_error()));
+    QVERIFY(w.status_text().startsWith("Error"));
+    QVERIFY(!w.document().input());
+    QVERIFY(!w.open_file(dir.filePath("missing.skein")));
+    QVERIFY2(w.last_error().contains("missing.skein"), qPrintable(w.last_error()));
+    // An edit that breaks a rule is refused with its reason, and changes nothing.
+    QVERIFY(w.open_file(kModels + "/swatch.obj"));
+    action(w, "generate")->trigger();
+    QVERIFY2(w.last_error().contains("label"), qPrintable(w.last_error()));
+    QCOMPARE(w.document().undo_stack()->count(), 0);
+    QVERIFY(!w.export_yarn(dir.filePath("yarn.bcc")));
+    QVERIFY(!QFile::exists(dir.filePath("yarn.bcc")));
+  }
+
+  void open_label_tessellate_paint_relax_export() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.viewport().gl_error().isEmpty());
+    auto& doc = w.document();
+    QVERIFY(w.open_file(kModels + "/swatch.obj"));
+    check_shot(w, "1-open", {});
+
+    // Label the first row by clicking a border edge, then the rest with auto-label.
+    const auto& input = *doc.input();
+    const int edge = mesh::default_start_edge(input);
+    const auto [a, b] = input.edge_vertices(edge);
+    const int face = input.edge_uses(edge).front().face;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : input.face(face)) c += input.point(v);
+    c /= input.face(face).size();
+    const Eigen::Vector3d near_edge = 0.8 * 0.5 * (input.point(a) + input.point(b)) + 0.2 * c;
+    w.set_tool(gui::Tool::FirstRow);
+    QTest::mouseClick(&w.viewport(), Qt::LeftButton, {}, w.viewport().to_screen(near_edge));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(doc.state().labels);
+    QCOMPARE(doc.state().labels->faces[face].row, 0);
+    action(w, "autoLabel")->trigger();
+    QVERIFY(mesh::validate_labels(input, *doc.state().labels).valid());
+    // Faces are tinted by row: the row colour mixed with white.
+    check_shot(w, "2-labeled", {0.55f * render::row_color(0) + Eigen::Vector3f::Constant(0.45f)});
+
+    // Bigger stitches keep the swatch small, then the stitch mesh.
+    doc.set_stitch_size({12, 10});
+    action(w, "generate")->trigger();
+    QVERIFY(doc.state().stitch);
+    QCOMPARE(w.layer(), gui::Layer::Stitch);
+    const auto& knit = render::stitch_color("k");
+    check_shot(w, "3-stitches", {knit}, 0.2);
+
+    // Paint purl with a drag across the middle row.
+    const auto stitch = *doc.state().stitch;
+    const auto rows = mesh::faces_by_row(stitch);
+    const auto& row = rows[rows.size() / 2];
+    std::vector<Eigen::Vector3d> stroke;
+    for (size_t i = 2; i + 2 < row.size(); ++i) stroke.push_back(centroid(stitch, row[i]));
+    w.set_tool(gui::Tool::Paint);
+    w.set_paint_type("p");
+    const int undo_before = doc.undo_stack()->count();
+    drag_through(w.viewport(), stroke);
+    QCOMPARE(doc.undo_stack()->count(), undo_before + 1);  // one stroke, one undo step
+    for (size_t i = 2; i + 2 < row.size(); ++i) QCOMPARE(doc.state().stitch->faces[row[i]].type, std::string("p"));
+    check_shot(w, "4-painted", {knit, render::stitch_color("p")}, 0.2);
+
+    // A rib over the border rows.
+    action(w, "selectBorder")->trigger();
+    QVERIFY(!w.selection().empty());
+    QVERIFY(w.fill_selection("rib"));
+    w.set_selection({});
+    check_shot(w, "5-rib", {knit, render::stitch_color("p")}, 0.2);
+
+    // Mesh relaxation in a worker thread; the stretch colours after it.
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    QVERIFY(w.relax_mesh());
+    QVERIFY(w.job_running());
+    QVERIFY(finished.wait(120000));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(doc.state().rest);
+    check_shot(w, "6-stretch", {}, 0.2);
+
+    // Yarn, emitted and relaxed.
+    QVERIFY(w.emit_yarn());
+    QCOMPARE(w.layer(), gui::Layer::Yarn);
+    const auto emitted = *doc.state().yarn;
+    check_shot(w, "7-yarn", {knit}, 0.1);
+    w.findChild<QAction*>("backendCpu")->trigger();
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(240000));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(doc.state().yarn_relaxed);
+    QVERIFY(doc.state().yarn->points != emitted.points);
+    check_shot(w, "8-relaxed", {knit, render::stitch_color("p")}, 0.1);
+
+    // Exports, and the project read back.
+    QTemporaryDir dir;
+    QVERIFY(w.export_yarn(dir.filePath("yarn.bcc")));
+    QCOMPARE(relax::read_bcc(dir.filePath("yarn.bcc").toStdString()).points.size(), emitted.points.size());
+    QVERIFY(w.export_yarn(dir.filePath("yarn.obj")));
+    QVERIFY(QFileInfo(dir.filePath("yarn.obj")).size() > 1000);
+    QVERIFY(w.export_stitch_ply(dir.filePath("stitches.ply")));
+    QVERIFY(QFileInfo(dir.filePath("stitches.ply")).size() > 1000);
+    QVERIFY(w.export_picture(dir.filePath("view.png")));
+    QCOMPARE(QImage(dir.filePath("view.png")).size(), w.viewport().grabFramebuffer().size());
+    QVERIFY(w.save_project(dir.filePath("garment.skein")));
+    const auto project = mesh::read_project(dir.filePath("garment.skein").toStdString());
+    QVERIFY(project.stitch && *project.stitch == *doc.state().stitch);
+    MainWindow again;
+    QVERIFY(again.open_file(dir.filePath("garment.skein")));
+    QVERIFY(*again.document().state().stitch == *doc.state().stitch);
+    QCOMPARE(again.layer(), gui::Layer::Stitch);
+  }
+
+  void yarn_relaxation_pauses_resumes_and_stops() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.open_file(kModels + "/swatch.obj"));
+    action(w, "autoLabel")->trigger();
+    action(w, "generate")->trigger();
+    QVERIFY(w.emit_yarn());
+    w.findChild<QAction*>("backendCpu")->trigger();
+    QVERIFY(w.relax_yarn());
+    auto* pause = action(w, "pause");
+    QVERIFY(pause->isEnabled());
+    QVERIFY(!action(w, "generate")->isEnabled());  // no edits while a job runs
+    QTest::qWait(1500);  // the window stays responsive meanwhile: this wait runs its event loop
+    pause->trigger();
+    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QAction*>("pause")->text().contains("Resume"), 1000);
+    QTest::qWait(300);
+    QVERIFY(w.job_running());  // paused, not finished
+    QVERIFY(!w.document().state().yarn_relaxed);
+    pause->trigger();  // resume
+    QTest::qWait(500);
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    action(w, "stop")->trigger();
+    QVERIFY(finished.wait(60000));
+    QVERIFY(!w.job_running());
+    QVERIFY(w.document().state().yarn_relaxed);
+    QVERIFY(action(w, "generate")->isEnabled());
+    // Undo takes the relaxed yarn back to the emitted one.
+    w.document().undo_stack()->undo();
+    QVERIFY(!w.document().state().yarn_relaxed);
+  }
+
+  void every_edit_undoes_and_redoes() {
+    gui::Document doc;
+    doc.open((kModels + "/swatch.obj").toStdString());
+    const auto check = [&](const char* what, auto&& edit) {
+      const gui::EditState before = doc.state();
+      const int index = doc.undo_stack()->index();
+      edit();
+      const gui::EditState after = doc.state();
+      QVERIFY2(doc.undo_stack()->index() == index + 1, what);
+      QVERIFY2(!same(before, after), what);
+      doc.undo_stack()->undo();
+      QVERIFY2(same(doc.state(), before), what);
+      doc.undo_stack()->redo();
+      QVERIFY2(same(doc.state(), after), what);
+    };
+    const auto& input = *doc.input();
+    const int start = mesh::default_start_edge(input);
+    check("first row", [&] { doc.label_first_row(start); });
+    const int face0 = input.edge_uses(start).front().face;
+    const auto top = mesh::top_edges(input, doc.state().labels->faces[face0], face0);
+    check("next row", [&] { doc.label_next_row(input.face_edge(face0, top.front())); });
+    check("flip row", [&] { doc.flip_row(1); });
+    check("auto-label", [&] { doc.auto_label(); });
+    check("stitch size", [&] { doc.set_stitch_size({8, 7}); });
+    check("generate", [&] { doc.generate_stitch_mesh(); });
+    int course = -1, wale = -1;
+    for (int e = 0; e < input.num_edges(); ++e) (doc.state().labels->edges[e] == mesh::EdgeLabel::Course ? course : wale) = e;
+    check("course value", [&] { doc.set_edge_value(course, doc.state().values->edge[course] + 2); });
+    check("row value", [&] { doc.set_edge_value(wale, doc.state().values->edge[wale] + 1); });
+    check("wale mark", [&] { doc.toggle_wale_mark(wale); });
+    const auto& s = *doc.state().stitch;
+    const int f = middle_face(s);
+    check("paint", [&] { doc.paint({f}, "p", "paint"); });
+    check("fill", [&] { doc.fill(mesh::faces_near_border(s, 2), mesh::parse_fill("seed"), "seed"); });
+    const auto rows = mesh::faces_by_row(doc.state().stitch.value());
+    std::vector<int> all(doc.state().stitch->faces.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    check("tile pattern", [&] { doc.tile_pattern(all, mesh::read_pattern((kPatterns + "/seed.knit").toStdString()), rows[0][0]); });
+    const auto path = mesh::top_edge_path(*doc.state().stitch, static_cast<int>(rows.size() / 2), 2, 4);
+    check("mark cable", [&] { doc.mark_cable(path, 1, 1); });
+    check("unmark cable", [&] { doc.unmark_cable(path); });
+    const auto face = doc.state().stitch->faces[f];
+    const int u = face.vertex(face.bottom + 1), v = face.vertex(face.bottom + 2);
+    check("split", [&] { doc.split_course_edge(u, v); });
+    const auto g = doc.state().stitch->faces[f];
+    check("shift wale edge", [&] { doc.shift_wale_edge(g.vertex(g.bottom), g.vertex(g.bottom + 1), mesh::WaleEnd::Top, -1); });
+    doc.undo_stack()->undo();
+    const int m = static_cast<int>(doc.state().stitch->vertices.size()) - 1;  // the split's new vertex
+    check("collapse", [&] { doc.collapse_course_edge(u, m); });
+    check("add wale edge", [&] { doc.add_wale_edge(f); });
+    const auto h = doc.state().stitch->faces[f];
+    check("remove wale edge", [&] { doc.remove_wale_edge(h.vertex(h.bottom), h.vertex(h.bottom + 1)); });
+    auto moved = *doc.state().stitch;
+    moved.vertices[0].x() += 0.5;
+    check("relaxed mesh", [&] { doc.set_relaxed_mesh(moved, {3, 2.5}); });
+    mesh::YarnCurves yarn;
+    yarn.points = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
+    yarn.curve_start = {0, 2};
+    yarn.closed = {0};
+    check("yarn", [&] { doc.set_yarn(yarn, false, "yarn"); });
+    // A refused edit leaves no undo step.
+    const int count = doc.undo_stack()->count();
+    bool refused = false;
+    try {
+      doc.remove_wale_edge(0, 999999);
+    } catch (const skein::Error&) {
+      refused = true;
+    }
+    QVERIFY(refused);
+    QCOMPARE(doc.undo_stack()->count(), count);
+  }
+};
+
+int main(int argc, char** argv) {
+  QSurfaceFormat format;
+  format.setVersion(3, 3);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setDepthBufferSize(24);
+  QSurfaceFormat::setDefaultFormat(format);
+  QApplication app(argc, argv);
+  GuiTest test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_gui.moc"
