@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -81,6 +82,20 @@ TEST(MeshRelax, RunsAreDeterministic) {
   a.run();
   b.run();
   EXPECT_EQ(a.positions(), b.positions());
+}
+
+TEST(MeshRelax, AnInterruptStopsTheRunAfterItsStep) {
+  const auto m = models::tube();
+  const auto s = uneven_tube(m);
+  std::atomic<bool> interrupt{false};
+  relax::MeshRelaxOptions o;
+  o.interrupt = &interrupt;
+  relax::MeshRelaxer relaxer(m.points(), m.faces(), s, o);
+  const auto report = relaxer.run([&](const relax::MeshRelaxStep& step) {
+    if (step.step == 3) interrupt = true;
+  });
+  EXPECT_EQ(report.steps.size(), 3u);
+  EXPECT_FALSE(report.converged);
 }
 
 TEST(MeshRelax, RestLengthsFollowTheSurfaceArea) {

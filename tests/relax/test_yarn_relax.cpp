@@ -2,6 +2,8 @@
 // knitted pieces, checkpoints and determinism.
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include <fstream>
 
 #include <omp.h>
@@ -210,6 +212,26 @@ TEST(YarnCheckpoint, ResumeEqualsAnUninterruptedRun) {
   EXPECT_EQ(report.guard.pairs_tested, whole.report.guard.pairs_tested);
   // A run stopped by its cap leaves its last state behind.
   EXPECT_EQ(read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points()).step, 70);
+}
+
+TEST(YarnRelax, AnInterruptedRunGoesOnFromItsState) {
+  const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "rib");
+  std::atomic<bool> interrupt{false};
+  YarnRelaxOptions options;
+  options.interrupt = &interrupt;
+  const auto relaxer = make_cpu_yarn_relaxer(system, targets, options);
+  auto state = initial_state(system, options);
+  const auto paused = relaxer->run(state, [&](const YarnStepLog& log) {
+    if (log.step == 12) interrupt = true;
+  });
+  EXPECT_EQ(paused.stopped_by, "interrupted");
+  EXPECT_FALSE(paused.converged);
+  EXPECT_EQ(state.step, 12);
+  interrupt = false;
+  const auto finished = relaxer->run(state);
+  EXPECT_TRUE(finished.converged) << finished.stopped_by;
+  EXPECT_GT(state.step, 12);
+  EXPECT_EQ(finished.pull_through_events, 0);
 }
 
 TEST(YarnCheckpoint, DamagedOrForeignCheckpointsAreRejected) {
