@@ -375,7 +375,7 @@ void MainWindow::refresh_info() {
     lines << "" << tr("Stitch mesh: %1 stitches in %2 rows").arg(stats.faces).arg(stats.rows);
     lines << tr("Increases %1, decreases %2, cable edges %3").arg(stats.increases).arg(stats.decreases).arg(stats.cable_edges);
     for (const auto& [type, count] : stats.stitch_types) lines << tr("  %1: %2").arg(QString::fromStdString(type)).arg(count);
-    if (state.rest) lines << tr("Relaxed: rest stitch %1 x %2 mm").arg(2 * state.rest->r_course, 0, 'f', 2).arg(2 * state.rest->r_wale, 0, 'f', 2);
+    if (state.rest) lines << tr("Relaxed: rest course edge %1 mm, wale edge %2 mm").arg(state.rest->r_course, 0, 'f', 2).arg(state.rest->r_wale, 0, 'f', 2);
     const auto selected = std::count(m_selected.begin(), m_selected.end(), 1);
     if (selected > 0) lines << tr("Selected: %1 stitches").arg(selected);
   }

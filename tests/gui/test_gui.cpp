@@ -229,6 +229,67 @@ private slots:
     QCOMPARE(again.layer(), gui::Layer::Stitch);
   }
 
+  /// The user guide's pictures (docs/gui.md): a beanie from mesh to relaxed yarn, each stage as the whole window.
+  void tour_of_a_beanie() {
+    MainWindow w;
+    w.resize(1400, 900);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    auto& doc = w.document();
+    const auto window_shot = [&](const QString& name) {
+      QApplication::processEvents();
+      QVERIFY(w.grab().save(QDir(shots_dir()).filePath(name + ".png")));
+    };
+    QVERIFY(w.open_file(kModels + "/beanie.obj"));
+    window_shot("gui-open");
+    action(w, "autoLabel")->trigger();
+    QVERIFY(mesh::validate_labels(*doc.input(), *doc.state().labels).valid());
+    check_shot(w, "beanie-labels", {}, 0.15);
+    window_shot("gui-labels");
+
+    doc.set_stitch_size({10, 8});
+    action(w, "generate")->trigger();
+    const auto& stitch = *doc.state().stitch;
+    // Ribbing at the brim, moss stitch over the middle rows, by selection.
+    w.set_selection(mesh::faces_near_border(stitch, 3));
+    QVERIFY(w.fill_selection("rib2x2"));
+    const auto grid = mesh::stitch_grid(*doc.state().stitch);
+    std::vector<int> band;
+    for (int f = 0; f < static_cast<int>(grid.level.size()); ++f)
+      if (grid.level[f] >= 8 && grid.level[f] < 14) band.push_back(f);
+    w.set_selection(band);
+    QVERIFY(w.tile_pattern_file(kPatterns + "/moss.knit"));
+    w.set_tool(gui::Tool::Select);
+    window_shot("gui-select");
+    w.set_selection({});
+    check_shot(w, "beanie-paint", {render::stitch_color("k"), render::stitch_color("p")}, 0.15);
+    window_shot("gui-paint");
+
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    QVERIFY(w.relax_mesh());
+    QVERIFY(finished.wait(300000));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    window_shot("gui-stretch");
+
+    w.set_coloring(gui::Coloring::StitchType);
+    QVERIFY(w.emit_yarn());
+    w.findChild<QAction*>("backendCpu")->trigger();
+    QVERIFY(w.relax_yarn());
+    QTest::qWait(2000);
+    window_shot("gui-relaxing");
+    // A whole beanie takes minutes on two cores: the tour stops the run after SKEIN_GUI_TOUR_SECONDS (15 by
+    // default; scripts/gui-pictures.sh gives it time to converge), as a user presses Stop.
+    const int seconds = qEnvironmentVariableIsSet("SKEIN_GUI_TOUR_SECONDS") ? qEnvironmentVariableIntValue("SKEIN_GUI_TOUR_SECONDS") : 15;
+    if (!finished.wait(1000 * seconds)) {
+      action(w, "stop")->trigger();
+      QVERIFY(finished.wait(60000));
+    }
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(doc.state().yarn_relaxed);
+    check_shot(w, "beanie-yarn", {render::stitch_color("k"), render::stitch_color("p")}, 0.15);
+    window_shot("gui-yarn");
+  }
+
   void yarn_relaxation_pauses_resumes_and_stops() {
     MainWindow w;
     w.show();
