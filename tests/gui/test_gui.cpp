@@ -13,6 +13,7 @@
 #include <QUndoStack>
 
 #include "common/error.hpp"
+#include "cuda/device.hpp"
 #include "main_window.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
@@ -129,6 +130,19 @@ private slots:
     QCOMPARE(w.document().undo_stack()->count(), 0);
     QVERIFY(!w.export_yarn(dir.filePath("yarn.bcc")));
     QVERIFY(!QFile::exists(dir.filePath("yarn.bcc")));
+    // Asking for the GPU where none answers is an error message, not a crash; the yarn stays as emitted.
+    if (!cuda::query_devices().available()) {
+      action(w, "autoLabel")->trigger();
+      action(w, "generate")->trigger();
+      QVERIFY(w.emit_yarn());
+      action(w, "backendCuda")->trigger();
+      QSignalSpy finished(&w, &MainWindow::job_finished);
+      QVERIFY(w.relax_yarn());
+      QVERIFY(finished.wait(60000));
+      QVERIFY2(w.last_error().contains("GPU") || w.last_error().contains("CUDA"), qPrintable(w.last_error()));
+      QVERIFY(!w.document().state().yarn_relaxed);
+      QVERIFY(!w.job_running());
+    }
   }
 
   void open_label_tessellate_paint_relax_export() {
