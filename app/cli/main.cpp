@@ -16,6 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "commands.hpp"
+#include "job.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
@@ -40,271 +42,7 @@ namespace fs = std::filesystem;
 using namespace skein;
 using nlohmann::json;
 
-namespace {
-
-class Stopwatch {
-public:
-  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
-
-private:
-  std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
-};
-
-bool is_project(const fs::path& path) { return path.extension() == ".skein"; }
-
-/// A mesh file or the input mesh of a project.
-mesh::InputMesh load_input(const fs::path& path) {
-  if (!is_project(path)) return mesh::load_mesh(path);
-  auto project = mesh::read_project(path);
-  if (!project.input) throw Error(path.string(), "", "the project holds no input mesh");
-  return std::move(*project.input);
-}
-
-/// Labels (and tessellation values, when stored) in `path` for `mesh`: the same faces, corner for corner
-/// (vertex ids may differ).
-std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
-  auto project = mesh::read_project(path);
-  if (!project.input || !project.labels) throw Error(path.string(), "", "holds no labels (it needs 'input-mesh' and 'labels' sections)");
-  const auto& stored = *project.input;
-  const auto differ = [&](const std::string& what) {
-    throw Error(path.string(), "", "its labels were made for a different mesh than " + mesh.source() + " (" + what + ")");
-  };
-  if (stored.num_faces() != mesh.num_faces()) differ(std::to_string(stored.num_faces()) + " faces, not " + std::to_string(mesh.num_faces()));
-  const double tolerance = 1e-6 * mesh.bounding_diagonal();
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    if (stored.face(f).size() != mesh.face(f).size()) differ("face " + std::to_string(f) + " has another number of corners");
-    for (size_t k = 0; k < mesh.face(f).size(); ++k)
-      if ((stored.point(stored.face(f)[k]) - mesh.point(mesh.face(f)[k])).norm() > tolerance)
-        differ("face " + std::to_string(f) + " corner " + std::to_string(k) + " is elsewhere");
-  }
-  return {std::move(*project.labels), std::move(project.values)};
-}
-
-json stats_json(const mesh::StitchMesh& sm) {
-  const auto s = mesh::stitch_stats(sm);
-  return {{"kind", "stitch-mesh"}, {"faces", s.faces},         {"vertices", s.vertices},
-          {"rows", s.rows},         {"increases", s.increases}, {"decreases", s.decreases},
-          {"cable_edges", s.cable_edges}, {"stitch_types", s.stitch_types}, {"invalid_faces", s.invalid_faces},
-          {"valid", s.valid}};
-}
-
-json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels) {
-  const auto report = mesh::validate_labels(m, labels);
-  json problems = json::array(), mismatches = json::array();
-  for (const auto& [f, why] : report.face_problems) problems.push_back({{"face", f}, {"reason", why}});
-  for (const auto& [e, why] : report.mismatches) mismatches.push_back({{"edge", e}, {"reason", why}});
-  return {{"rows", labels.rows}, {"invalid_faces", report.face_problems.size()}, {"face_problems", problems},
-          {"mismatched_edges", report.mismatches.size()}, {"mismatches", mismatches}, {"valid", report.valid()}};
-}
-
-json mesh_json(const mesh::InputMesh& m) {
-  int border = 0;
-  std::map<std::string, int> sizes;
-  for (int e = 0; e < m.num_edges(); ++e) border += m.is_border(e);
-  for (const auto& f : m.faces()) ++sizes[std::to_string(f.size()) + "-gons"];
-  return {{"kind", "mesh"}, {"vertices", m.num_vertices()}, {"faces", m.num_faces()}, {"edges", m.num_edges()},
-          {"border_edges", border}, {"face_sizes", sizes}};
-}
-
-void write_json(const json& j, const std::string& path) {
-  if (path == "-") {
-    std::cout << j.dump(2) << "\n";
-    return;
-  }
-  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
-}
-
-/// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches); "front": the
-/// straight front alone.
-render::View view_named(const std::string& name) {
-  render::View view;
-  if (name == "flat") view.directions = {{0, 0, -1}, {0, 0, 1}};
-  if (name == "front") view.directions = {{0, 0, -1}};
-  return view;
-}
-
-void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
-                       int panel = 900) {
-  Stopwatch t;
-  render::View view = view_named(views);
-  view.panel = panel;
-  view.outlines = false;
-  render::write_png(render::draw(render::yarn_polygons(yarn, color), view), path);
-  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
-}
-
-void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views = "garment") {
-  Stopwatch t;
-  render::write_png(render::draw(render::stitch_polygons(sm, color), view_named(views)), path);
-  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
-}
-
-bool is_bcc(const fs::path& path) { return path.extension() == ".bcc"; }
-
-/// Yarn from a .bcc file, or emitted from a project's stitch mesh.
-mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr) {
-  if (is_bcc(path)) return relax::read_bcc(path);
-  const auto project = mesh::read_project(path);
-  if (!project.stitch) throw Error(path.string(), "", "holds no stitch mesh; run 'skein stitch' first");
-  mesh::EmitOptions options;
-  options.yarn_radius = radius > 0 ? radius : 0.1 * project.stitch_size.width;
-  const auto& library = stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(stitches);
-  return mesh::emit_yarn(*project.stitch, library, options, report);
-}
-
-json yarn_json(const mesh::YarnCurves& yarn) {
-  const auto s = relax::yarn_stats(yarn);
-  return {{"kind", "yarn"},
-          {"curves", s.curves},
-          {"closed_curves", s.closed_curves},
-          {"control_points", s.control_points},
-          {"total_length", s.total_length},
-          {"min_segment_distance", std::isfinite(s.min_segment_distance) ? json(s.min_segment_distance) : json(nullptr)},
-          {"closest_points", {s.closest.first, s.closest.second}},
-          {"radius", s.radius}};
-}
-
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path) {
-  const auto ext = fs::path(path).extension();
-  if (ext == ".bcc") relax::write_bcc(yarn, path);
-  else if (ext == ".obj") relax::write_obj_polylines(yarn, path);
-  else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
-}
-
-/// "A:B" (inclusive) or "A" → row ids.
-std::pair<int, int> parse_rows(const std::string& s) {
-  int a = 0, b = 0;
-  char colon = 0, tail = 0;
-  const int n = std::sscanf(s.c_str(), "%d%c%d%c", &a, &colon, &b, &tail);
-  if (n == 1) return {a, a};
-  if (n == 3 && colon == ':' && a >= 0 && b >= a) return {a, b};
-  throw Error("", "--rows '" + s + "'", "expected a row or an inclusive range A:B with 0 <= A <= B");
-}
-
-/// JSON as "key.sub: value" lines; long lists show their first entries and a count.
-void print_text(const json& j, const std::string& prefix) {
-  if (j.is_object()) {
-    for (const auto& [k, v] : j.items()) print_text(v, prefix.empty() ? k : prefix + "." + k);
-  } else if (j.is_array() && !j.empty() && j.front().is_object()) {
-    constexpr size_t shown = 5;
-    for (size_t i = 0; i < std::min(shown, j.size()); ++i) print_text(j[i], prefix + "[" + std::to_string(i) + "]");
-    if (j.size() > shown) std::cout << prefix << ": ... " << j.size() - shown << " more (see --json)\n";
-  } else {
-    std::cout << prefix << ": " << (j.is_string() ? j.get<std::string>() : j.dump()) << "\n";
-  }
-}
-
-/// "K=V" with two integers (edge or row id = tessellation value).
-std::pair<int, int> parse_assignment(const std::string& option, const std::string& s) {
-  int k = 0, v = 0;
-  char eq = 0, tail = 0;
-  if (std::sscanf(s.c_str(), "%d%c%d%c", &k, &eq, &v, &tail) != 3 || eq != '=')
-    throw Error("", option + " '" + s + "'", "expected ID=VALUE, e.g. 12=7");
-  return {k, v};
-}
-
-/// A one-line progress bar with an ETA on a terminal; nothing otherwise.
-class ProgressBar {
-public:
-  explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
-  /// `done` in [0, 1].
-  void show(double done, const std::string& text) {
-    if (!m_enabled || m_last.seconds() < 0.2) return;
-    m_last = {};
-    done = std::clamp(done, 0.0, 1.0);
-    const int width = 30, filled = static_cast<int>(done * width);
-    const double elapsed = m_started.seconds();
-    const double eta = done > 0 ? elapsed * (1 - done) / done : 0;
-    std::fprintf(stderr, "\r[%s%s] %3.0f%% %s ETA %dm%02ds ", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
-                 100 * done, text.c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
-    std::fflush(stderr);
-  }
-  ~ProgressBar() {
-    if (m_enabled) std::fprintf(stderr, "\n");
-  }
-
-private:
-  bool m_enabled;
-  Stopwatch m_started, m_last;
-};
-
-/// TYPE=F pairs of --take-up-stitch.
-std::map<std::string, double> parse_take_up(const std::string& option, const std::vector<std::string>& pairs) {
-  std::map<std::string, double> out;
-  for (const auto& text : pairs) {
-    const auto [name, value] = std::pair{text.substr(0, text.find('=')), text.find('=') == std::string::npos ? "" : text.substr(text.find('=') + 1)};
-    char* end = nullptr;
-    const double f = std::strtod(value.c_str(), &end);
-    if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
-    out[name] = f;
-  }
-  return out;
-}
-
-json guard_json(const relax::GuardCounters& g) {
-  return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
-          {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},
-          {"halvings", g.halvings},     {"held_points", g.held_points}};
-}
-
-}  // namespace
-
-/// The outputs of a yarn relaxation (relax-yarn, pattern --relax).
-struct YarnRunOutputs {
-  std::string input, output, method, backend, report, log, png, views;
-  bool progress = false;  ///< a progress bar on the terminal
-  json extra = json::object();  ///< more report fields
-  int panel = 900;              ///< picture: pixels per view
-  render::YarnColor color = render::YarnColor::StitchType;
-  double scale = 1;             ///< the relaxed yarn is written scaled by this (1/gamma, Leaf §6.2)
-};
-
-/// Relaxes `state` with the backend asked for, with progress and the per-step log, then writes the yarn,
-/// the JSON report and the picture. Returns the exit status: 1 when the run diverged.
-int relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
-                    const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
-  std::unique_ptr<std::ofstream> log;
-  if (!run.log.empty()) {
-    log = std::make_unique<std::ofstream>(run.log);
-    *log << "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
-  }
-  ProgressBar bar(run.progress);
-  auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(run.backend), system, targets, options);
-  spdlog::info("relaxing with {} ({} CPU threads for the host side)", run.method, omp_get_max_threads());
-  const double log_tol = std::log(std::max(options.tolerance, 1e-12));
-  const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
-    if (log)
-      *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
-    const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
-    const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
-    char text[160];
-    std::snprintf(text, sizeof text, "step %ld residual %.3g move %.3g mm contacts %ld", s.step, s.residual, s.moved, s.contacts);
-    bar.show(std::max(by_steps, by_residual), text);
-    if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
-  });
-  auto yarn_out_curves = relax::with_points(yarn, state.points * run.scale);
-  yarn_out_curves.radius *= run.scale;
-  write_yarn(yarn_out_curves, run.output);
-  spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events; wrote {}",
-               report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
-               report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events), run.output);
-  if (!run.report.empty()) {
-    json j = {{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
-                {"control_points", system.num_points()}, {"segments", system.num_segments()},
-                {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
-                {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
-                {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
-                {"guard_events", guard_json(report.guard)},
-                {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
-                {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
-                {"yarn", yarn_json(yarn_out_curves)}};
-    j.update(run.extra);
-    write_json(j, run.report);
-  }
-  if (!run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, run.color, run.views, run.panel);
-  return report.stopped_by == "diverged" ? 1 : 0;
-}
+using namespace skein::cli;
 
 int main(int argc, char** argv) {
   CLI::App app{"skein: polygon mesh → knitted garment with yarn-level detail (Yuksel et al. 2012 stitch meshes)"};
@@ -503,6 +241,14 @@ int main(int argc, char** argv) {
   int audit_samples = 4;
   audit->add_option("--samples", audit_samples, "polyline points per spline segment for the crossing test")->capture_default_str()->check(CLI::Range(1, 64));
 
+  // skein run
+  auto* run_cmd = app.add_subcommand("run", "run a job file: the whole pipeline from a mesh to relaxed yarn, unattended (docs/jobs.md)");
+  std::string run_file, run_output;
+  bool run_resume = false;
+  run_cmd->add_option("JOB", run_file, "job file (.json)")->required();
+  run_cmd->add_option("-o,--output", run_output, "output folder (default: the job's \"output\")");
+  run_cmd->add_flag("--resume", run_resume, "go on from the yarn checkpoint in the output folder");
+
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
   std::string stats_in;
@@ -641,6 +387,11 @@ int main(int argc, char** argv) {
       if (!edit_png.empty()) render_stitch_mesh(sm, edit_png, render::ColorBy::StitchType);
       return 0;
     }
+    if (*run_cmd) {
+      auto job = read_job(run_file);
+      if (!run_output.empty()) job.output = run_output;
+      return run_job(job, run_resume, !quiet && isatty(fileno(stderr)));
+    }
     if (*stats) {
       json j;
       if (is_bcc(stats_in)) {
@@ -769,8 +520,9 @@ int main(int argc, char** argv) {
         state = relax::read_checkpoint(ry_resume, relax::checkpoint_fingerprint(system, ry_options.method), system.num_points());
         spdlog::info("resuming {} at step {}", ry_resume, state.step);
       }
-      return relax_and_write(yarn, system, targets, ry_options, state,
-                             {ry_in, ry_out, ry_method, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))});
+      ry_options.interrupt = install_interrupt_handlers();
+      return exit_status(relax_and_write(yarn, system, targets, ry_options, state,
+                                         {ry_in, ry_out, ry_method, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))}));
     }
     if (*pat) {
       int across = 0, up = 0;
@@ -835,9 +587,10 @@ int main(int argc, char** argv) {
           pat_extra["period"] = {sx, sy};
         }
         auto state = relax::initial_state(system, pat_options);
-        return relax_and_write(yarn, system, targets, pat_options, state,
-                               {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra, pat_panel,
-                                pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, 1 / pat_gamma});
+        return exit_status(relax_and_write(yarn, system, targets, pat_options, state,
+                                           {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra,
+                                            pat_panel, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType,
+                                            1 / pat_gamma}));
       }
       write_yarn(yarn, pat_out);
       if (!pat_report.empty())

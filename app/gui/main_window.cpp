@@ -458,12 +458,7 @@ bool MainWindow::tile_pattern_file(const QString& path) {
     const auto faces = selection();
     if (!m_doc.state().stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
     if (faces.empty()) throw Error("select the stitches to tile the pattern over first (the Select tool)");
-    // The pattern starts at the lowest, then leftmost, selected stitch.
-    const auto grid = mesh::stitch_grid(*m_doc.state().stitch);
-    const int origin = *std::min_element(faces.begin(), faces.end(), [&](int a, int b) {
-      return std::pair(grid.level[a], grid.column[a]) < std::pair(grid.level[b], grid.column[b]);
-    });
-    m_doc.tile_pattern(faces, pattern, origin);
+    m_doc.tile_pattern(faces, pattern, mesh::lowest_left(*m_doc.state().stitch, faces));
     statusBar()->showMessage(tr("Tiled %1 over %2 stitches").arg(QString::fromStdString(pattern.name)).arg(faces.size()));
   });
 }
@@ -597,6 +592,8 @@ void MainWindow::start_job(RelaxJob* job) {
   connect(job, &QThread::finished, this, &MainWindow::on_job_finished, Qt::QueuedConnection);
   set_editing_enabled(false);
   m_progress->setValue(0);
+  m_live_clock.start();
+  m_live_wait = 0;
   job->start();
 }
 
@@ -676,7 +673,14 @@ void MainWindow::on_job_updated() {
     const double done = p.measure > 0 && p.measure < 1 ? std::log(p.measure) / std::log(0.01) : 0;
     m_progress->setValue(static_cast<int>(1000 * std::clamp(done, 0.0, 1.0)));
     m_job_label->setText(tr("yarn step %1, residual %2").arg(p.step).arg(p.measure, 0, 'g', 3));
-    if (m_layer == Layer::Yarn) m_view->show_geometry(yarn_geometry(static_cast<YarnRelaxJob&>(*m_job).yarn()), false);
+    // The live view costs the relaxation its CPU time: redraw no more often than 8x what a redraw takes.
+    if (m_layer == Layer::Yarn && m_live_clock.elapsed() >= m_live_wait) {
+      m_live_clock.restart();
+      m_view->show_geometry(yarn_geometry(static_cast<YarnRelaxJob&>(*m_job).yarn(), YarnDetail::Live), false);
+      m_view->repaint();
+      m_live_wait = std::max<qint64>(200, 8 * m_live_clock.elapsed());
+      m_live_clock.restart();
+    }
   } else {
     m_progress->setValue(static_cast<int>(1000 * p.step / std::max<long>(p.max_steps, 1)));
     m_job_label->setText(tr("mesh step %1, largest move %2 mm").arg(p.step).arg(p.measure, 0, 'g', 3));

@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include <QElapsedTimer>
 #include <QMainWindow>
 #include <QPointer>
 
@@ -115,6 +116,8 @@ private:
   std::unique_ptr<RelaxJob> m_job;
   bool m_job_is_yarn = false, m_paused = false;
   relax::Backend m_backend = relax::Backend::Auto;
+  QElapsedTimer m_live_clock;  ///< since the last live redraw
+  qint64 m_live_wait = 0;      ///< [ms] before the next one
 
   QString m_last_error;
   QPointer<QMessageBox> m_error_box;

@@ -132,10 +132,11 @@ Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, cons
   return g;
 }
 
-Geometry yarn_geometry(const mesh::YarnCurves& yarn, int max_tube_points) {
+Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail, int max_tube_points) {
   Geometry g;
   if (static_cast<int>(yarn.points.size()) <= max_tube_points) {
-    for (const auto& polygon : render::yarn_polygons(yarn, render::YarnColor::StitchType, 6, 2)) {
+    const bool full = detail == YarnDetail::Full;
+    for (const auto& polygon : render::yarn_polygons(yarn, render::YarnColor::StitchType, full ? 6 : 4, full ? 2 : 1)) {
       std::vector<int> loop(polygon.points.size());
       for (size_t k = 0; k < loop.size(); ++k) loop[k] = static_cast<int>(k);
       add_polygon(g, polygon.points, loop, polygon.color);

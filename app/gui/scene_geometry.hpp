@@ -39,9 +39,13 @@ Geometry input_geometry(const mesh::InputMesh& input, const std::optional<mesh::
 Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest,
                          const std::vector<char>& selected);
 
+/// How finely yarn tubes are drawn: Full for a finished shape, Live (square tubes, one sample per segment,
+/// a quarter of the triangles) while a relaxation updates the view.
+enum class YarnDetail { Full, Live };
+
 /// Yarn as shaded tubes coloured by stitch type; very large yarn (over `max_tube_points` control points) as
 /// lines, which keeps a sweater's yarn within graphics memory.
-Geometry yarn_geometry(const mesh::YarnCurves& yarn, int max_tube_points = 60000);
+Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail = YarnDetail::Full, int max_tube_points = 60000);
 
 /// What a ray from `origin` along `direction` hits first: the face and, of its loop, the edge nearest to the hit.
 struct Hit {

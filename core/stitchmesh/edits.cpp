@@ -307,6 +307,14 @@ StitchGrid stitch_grid(const StitchMesh& mesh) {
   return grid;
 }
 
+int lowest_left(const StitchMesh& mesh, const std::vector<int>& faces) {
+  if (faces.empty()) throw Error("", "stitches", "none chosen");
+  const auto grid = stitch_grid(mesh);
+  return *std::min_element(faces.begin(), faces.end(), [&](int a, int b) {
+    return std::pair(grid.level[a], grid.column[a]) < std::pair(grid.level[b], grid.column[b]);
+  });
+}
+
 StitchMesh fill(const StitchMesh& mesh, const std::vector<int>& faces, const Fill& pattern) {
   const std::set<int> chosen(faces.begin(), faces.end());
   for (int f : chosen)

@@ -42,6 +42,9 @@ struct StitchGrid {
   std::vector<long> level, column;  ///< per face
 };
 StitchGrid stitch_grid(const StitchMesh& mesh);
+/// The lowest, then leftmost, of `faces` in the stitch grid: where a tiled pattern starts unless told.
+/// Throws skein::Error when `faces` is empty.
+int lowest_left(const StitchMesh& mesh, const std::vector<int>& faces);
 
 /// Fills over a set of faces with a knit/purl pattern (Yuksel §5.3). Only plain stitches (one bottom and
 /// one top edge) change; increases and decreases keep their type.

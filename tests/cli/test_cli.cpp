@@ -5,7 +5,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <csignal>
+
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "testing.hpp"
 
@@ -230,4 +234,133 @@ TEST(Cli, PatternTilesEmitsAndRelaxes) {
   r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "x.bcc").string() + " --tile 3");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("expected NxM"), std::string::npos) << r.output;
+}
+
+namespace {
+const std::string kPatterns = SKEIN_PATTERNS_DIR;
+
+/// A small job on the swatch (big stitches, a yarn run to its step cap, checkpoints every 20 steps).
+std::string swatch_job(const std::string& extra = "", int max_steps = 60) {
+  return R"({"name": "swatch", "mesh": ")" + kModels + R"(/swatch.obj", "labels": ")" + kModels + R"(/swatch.skein",
+  "stitch_size": {"width": 12, "height": 10},
+  "edits": [{"fill": "rib", "near_border": 2}, {"pattern": ")" + kPatterns + R"(/seed.knit", "rows": "4:6"}],
+  "relax_yarn": {"max_steps": )" + std::to_string(max_steps) + R"(, "tolerance": 0, "checkpoint_every": 20}, "pictures": false)" + extra + "}";
+}
+
+/// Starts `skein ARGS` in the background (output to `log`) and returns its process id.
+pid_t spawn_skein(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    std::vector<char*> argv{const_cast<char*>(SKEIN_BIN)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(SKEIN_BIN, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// Waits until `path` exists (true) or `seconds` pass (false).
+bool wait_for(const std::filesystem::path& path, double seconds) {
+  for (int i = 0; i < seconds * 20; ++i) {
+    if (std::filesystem::exists(path)) return true;
+    ::usleep(50000);
+  }
+  return false;
+}
+
+int exit_code(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+}  // namespace
+
+TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
+  ScratchDir dir;
+  const auto error_for = [&](const std::string& name, const std::string& text) {
+    const auto r = run_skein("run " + dir.write(name, text).string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << name;  // refused before any work
+    return r.output;
+  };
+  const std::string base = swatch_job();
+  const auto with = [&](const std::string& extra) { return base.substr(0, base.size() - 1) + extra + "}"; };
+  std::string msg = error_for("typo.json", with(R"(, "relax_yarns": {})"));
+  EXPECT_NE(msg.find("key 'relax_yarns'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("known: "), std::string::npos) << msg;
+  msg = error_for("type.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"max_steps": "many"}})");
+  EXPECT_NE(msg.find("key 'relax_yarn.max_steps'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected a whole number, found \"many\""), std::string::npos) << msg;
+  msg = error_for("method.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"method": "rk4"}})");
+  EXPECT_NE(msg.find("expected \"fire\" or \"euler\", found \"rk4\""), std::string::npos) << msg;
+  msg = error_for("nomesh.json", R"({"name": "x"})");
+  EXPECT_NE(msg.find("key 'mesh'"), std::string::npos) << msg;
+  msg = error_for("missing.json", R"({"mesh": "no-such.obj"})");
+  EXPECT_NE(msg.find("does not exist"), std::string::npos) << msg;
+  msg = error_for("both.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "edits": [{"fill": "rib", "pattern": "x.knit"}]})");
+  EXPECT_NE(msg.find("key 'edits[0].fill'"), std::string::npos) << msg;
+  msg = error_for("fill.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "edits": [{"fill": "ribbon"}]})");
+  EXPECT_NE(msg.find("key 'edits[0].fill'"), std::string::npos) << msg;
+  msg = error_for("range.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_mesh": {"alpha": 3}})");
+  EXPECT_NE(msg.find("key 'relax_mesh.alpha'"), std::string::npos) << msg;
+  msg = error_for("json.json", R"({"mesh": )");
+  EXPECT_NE(msg.find("not valid JSON"), std::string::npos) << msg;
+  const auto r = run_skein("run " + (dir / "none.json").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("none.json"), std::string::npos) << r.output;
+}
+
+TEST(Job, AnUnwritableOutputIsRefusedBeforeAnyWork) {
+  ScratchDir dir;
+  dir.write("file", "not a folder");
+  const auto job = dir.write("job.json", swatch_job(R"(, "output": "file/out")"));
+  const auto r = run_skein("run " + job.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("output folder cannot be made"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("load and label"), std::string::npos) << r.output;  // no stage started
+}
+
+TEST(Job, KilledThenResumedEndsAsAnUninterruptedRun) {
+  ScratchDir dir;
+  const auto job = dir.write("job.json", swatch_job());
+  const auto whole = run_skein("-q run " + job.string() + " -o " + (dir / "whole").string());
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  const auto report = slurp(dir / "whole" / "report.json");
+  EXPECT_NE(report.find("\"status\": \"done\""), std::string::npos) << report;
+  for (const char* stage : {"load and label", "tessellate and edit", "relax the stitch mesh", "emit yarn", "relax the yarn"})
+    EXPECT_NE(report.find(stage), std::string::npos) << stage;
+  // SIGKILL after the first checkpoint; --resume goes on from it.
+  const pid_t pid = spawn_skein({"-q", "run", job.string(), "-o", (dir / "killed").string()}, dir / "killed.log");
+  ASSERT_TRUE(wait_for(dir / "killed" / "yarn.ckp", 120));
+  ::kill(pid, SIGKILL);
+  EXPECT_EQ(exit_code(pid), 128 + SIGKILL);
+  EXPECT_FALSE(std::filesystem::exists(dir / "killed" / "yarn-relaxed.bcc"));
+  const auto resumed = run_skein("run " + job.string() + " -o " + (dir / "killed").string() + " --resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming the yarn from"), std::string::npos) << resumed.output;
+  EXPECT_EQ(slurp(dir / "killed" / "yarn-relaxed.bcc"), slurp(dir / "whole" / "yarn-relaxed.bcc"));
+}
+
+TEST(Job, SigtermLeavesACheckpointToResumeFrom) {
+  ScratchDir dir;
+  const auto job = dir.write("job.json", swatch_job("", 1000000));  // runs until stopped
+  const pid_t pid = spawn_skein({"run", job.string(), "-o", (dir / "out").string()}, dir / "run.log");
+  ASSERT_TRUE(wait_for(dir / "out" / "yarn.ckp", 120));  // the yarn has relaxed 20 steps
+  ::kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << slurp(dir / "run.log");
+  const auto report = slurp(dir / "out" / "report.json");
+  EXPECT_NE(report.find("\"status\": \"interrupted\""), std::string::npos) << report;
+  EXPECT_NE(report.find("--resume"), std::string::npos) << report;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "yarn.ckp"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "yarn-relaxed.bcc"));
+  // The checkpoint is whole: a resumed run reads it and goes on.
+  const pid_t again = spawn_skein({"run", job.string(), "-o", (dir / "out").string(), "--resume"}, dir / "resumed.log");
+  for (int i = 0; i < 2400 && slurp(dir / "resumed.log").find("resuming the yarn from") == std::string::npos; ++i) ::usleep(50000);
+  ::kill(again, SIGTERM);
+  EXPECT_EQ(exit_code(again), 128 + SIGTERM);
+  EXPECT_NE(slurp(dir / "resumed.log").find("resuming the yarn from"), std::string::npos) << slurp(dir / "resumed.log");
 }

@@ -1,0 +1,286 @@
+#include "commands.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <spdlog/spdlog.h>
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "cuda/yarn_relaxer.hpp"
+#include "relax/yarn_io.hpp"
+#include "render/stitch_view.hpp"
+#include "render/yarn_view.hpp"
+
+namespace skein::cli {
+
+
+bool is_project(const fs::path& path) { return path.extension() == ".skein"; }
+
+mesh::InputMesh load_input(const fs::path& path) {
+  if (!is_project(path)) return mesh::load_mesh(path);
+  auto project = mesh::read_project(path);
+  if (!project.input) throw Error(path.string(), "", "the project holds no input mesh");
+  return std::move(*project.input);
+}
+
+std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path) {
+  auto project = mesh::read_project(path);
+  if (!project.input || !project.labels) throw Error(path.string(), "", "holds no labels (it needs 'input-mesh' and 'labels' sections)");
+  const auto& stored = *project.input;
+  const auto differ = [&](const std::string& what) {
+    throw Error(path.string(), "", "its labels were made for a different mesh than " + mesh.source() + " (" + what + ")");
+  };
+  if (stored.num_faces() != mesh.num_faces()) differ(std::to_string(stored.num_faces()) + " faces, not " + std::to_string(mesh.num_faces()));
+  const double tolerance = 1e-6 * mesh.bounding_diagonal();
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    if (stored.face(f).size() != mesh.face(f).size()) differ("face " + std::to_string(f) + " has another number of corners");
+    for (size_t k = 0; k < mesh.face(f).size(); ++k)
+      if ((stored.point(stored.face(f)[k]) - mesh.point(mesh.face(f)[k])).norm() > tolerance)
+        differ("face " + std::to_string(f) + " corner " + std::to_string(k) + " is elsewhere");
+  }
+  return {std::move(*project.labels), std::move(project.values)};
+}
+
+json stats_json(const mesh::StitchMesh& sm) {
+  const auto s = mesh::stitch_stats(sm);
+  return {{"kind", "stitch-mesh"}, {"faces", s.faces},         {"vertices", s.vertices},
+          {"rows", s.rows},         {"increases", s.increases}, {"decreases", s.decreases},
+          {"cable_edges", s.cable_edges}, {"stitch_types", s.stitch_types}, {"invalid_faces", s.invalid_faces},
+          {"valid", s.valid}};
+}
+
+json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels) {
+  const auto report = mesh::validate_labels(m, labels);
+  json problems = json::array(), mismatches = json::array();
+  for (const auto& [f, why] : report.face_problems) problems.push_back({{"face", f}, {"reason", why}});
+  for (const auto& [e, why] : report.mismatches) mismatches.push_back({{"edge", e}, {"reason", why}});
+  return {{"rows", labels.rows}, {"invalid_faces", report.face_problems.size()}, {"face_problems", problems},
+          {"mismatched_edges", report.mismatches.size()}, {"mismatches", mismatches}, {"valid", report.valid()}};
+}
+
+json mesh_json(const mesh::InputMesh& m) {
+  int border = 0;
+  std::map<std::string, int> sizes;
+  for (int e = 0; e < m.num_edges(); ++e) border += m.is_border(e);
+  for (const auto& f : m.faces()) ++sizes[std::to_string(f.size()) + "-gons"];
+  return {{"kind", "mesh"}, {"vertices", m.num_vertices()}, {"faces", m.num_faces()}, {"edges", m.num_edges()},
+          {"border_edges", border}, {"face_sizes", sizes}};
+}
+
+void write_json(const json& j, const std::string& path) {
+  if (path == "-") {
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+render::View view_named(const std::string& name) {
+  render::View view;
+  if (name == "flat") view.directions = {{0, 0, -1}, {0, 0, 1}};
+  if (name == "front") view.directions = {{0, 0, -1}};
+  return view;
+}
+
+void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views,
+                       int panel) {
+  Stopwatch t;
+  render::View view = view_named(views);
+  view.panel = panel;
+  view.outlines = false;
+  render::write_png(render::draw(render::yarn_polygons(yarn, color), view), path);
+  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
+}
+
+void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views) {
+  Stopwatch t;
+  render::write_png(render::draw(render::stitch_polygons(sm, color), view_named(views)), path);
+  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
+}
+
+bool is_bcc(const fs::path& path) { return path.extension() == ".bcc"; }
+
+mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report) {
+  if (is_bcc(path)) return relax::read_bcc(path);
+  const auto project = mesh::read_project(path);
+  if (!project.stitch) throw Error(path.string(), "", "holds no stitch mesh; run 'skein stitch' first");
+  mesh::EmitOptions options;
+  options.yarn_radius = radius > 0 ? radius : 0.1 * project.stitch_size.width;
+  const auto& library = stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(stitches);
+  return mesh::emit_yarn(*project.stitch, library, options, report);
+}
+
+json yarn_json(const mesh::YarnCurves& yarn) {
+  const auto s = relax::yarn_stats(yarn);
+  return {{"kind", "yarn"},
+          {"curves", s.curves},
+          {"closed_curves", s.closed_curves},
+          {"control_points", s.control_points},
+          {"total_length", s.total_length},
+          {"min_segment_distance", std::isfinite(s.min_segment_distance) ? json(s.min_segment_distance) : json(nullptr)},
+          {"closest_points", {s.closest.first, s.closest.second}},
+          {"radius", s.radius}};
+}
+
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path) {
+  const auto ext = fs::path(path).extension();
+  if (ext == ".bcc") relax::write_bcc(yarn, path);
+  else if (ext == ".obj") relax::write_obj_polylines(yarn, path);
+  else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
+}
+
+std::pair<int, int> parse_rows(const std::string& s) {
+  int a = 0, b = 0;
+  char colon = 0, tail = 0;
+  const int n = std::sscanf(s.c_str(), "%d%c%d%c", &a, &colon, &b, &tail);
+  if (n == 1) return {a, a};
+  if (n == 3 && colon == ':' && a >= 0 && b >= a) return {a, b};
+  throw Error("", "--rows '" + s + "'", "expected a row or an inclusive range A:B with 0 <= A <= B");
+}
+
+void print_text(const json& j, const std::string& prefix) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) print_text(v, prefix.empty() ? k : prefix + "." + k);
+  } else if (j.is_array() && !j.empty() && j.front().is_object()) {
+    constexpr size_t shown = 5;
+    for (size_t i = 0; i < std::min(shown, j.size()); ++i) print_text(j[i], prefix + "[" + std::to_string(i) + "]");
+    if (j.size() > shown) std::cout << prefix << ": ... " << j.size() - shown << " more (see --json)\n";
+  } else {
+    std::cout << prefix << ": " << (j.is_string() ? j.get<std::string>() : j.dump()) << "\n";
+  }
+}
+
+std::pair<int, int> parse_assignment(const std::string& option, const std::string& s) {
+  int k = 0, v = 0;
+  char eq = 0, tail = 0;
+  if (std::sscanf(s.c_str(), "%d%c%d%c", &k, &eq, &v, &tail) != 3 || eq != '=')
+    throw Error("", option + " '" + s + "'", "expected ID=VALUE, e.g. 12=7");
+  return {k, v};
+}
+
+
+std::map<std::string, double> parse_take_up(const std::string& option, const std::vector<std::string>& pairs) {
+  std::map<std::string, double> out;
+  for (const auto& text : pairs) {
+    const auto [name, value] = std::pair{text.substr(0, text.find('=')), text.find('=') == std::string::npos ? "" : text.substr(text.find('=') + 1)};
+    char* end = nullptr;
+    const double f = std::strtod(value.c_str(), &end);
+    if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
+    out[name] = f;
+  }
+  return out;
+}
+
+json guard_json(const relax::GuardCounters& g) {
+  return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
+          {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},
+          {"halvings", g.halvings},     {"held_points", g.held_points}};
+}
+
+namespace {
+std::atomic<int> g_signal{0};
+std::atomic<bool> g_interrupt{false};
+extern "C" void on_signal(int signal) {
+  g_signal = signal;
+  g_interrupt = true;
+}
+}  // namespace
+
+const std::atomic<bool>* install_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  for (int signal : {SIGINT, SIGTERM}) sigaction(signal, &action, nullptr);
+  return &g_interrupt;
+}
+
+int interrupt_signal() { return g_signal; }
+
+json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+                     const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
+  std::unique_ptr<std::ofstream> log;
+  if (!run.log.empty()) {
+    // Going on from a checkpoint, the log keeps its rows up to the checkpoint's step (a killed run may have
+    // logged further) and goes on from there.
+    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
+    if (state.step > 0) {
+      std::ifstream old(run.log);
+      std::string line;
+      for (bool header = true; std::getline(old, line); header = false)
+        if (!header && std::atol(line.c_str()) <= state.step) kept += line + "\n";
+    }
+    log = std::make_unique<std::ofstream>(run.log, std::ios::trunc);
+    *log << kept;
+  }
+  ProgressBar bar(run.progress);
+  auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(run.backend), system, targets, options);
+  spdlog::info("relaxing with {} ({} CPU threads for the host side)", run.method, omp_get_max_threads());
+  const double log_tol = std::log(std::max(options.tolerance, 1e-12));
+  std::vector<std::array<double, 3>> history;  // step, residual, energy
+  const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
+    if (log)
+      *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
+           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
+    history.push_back({static_cast<double>(s.step), s.residual, s.energy});
+    const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
+    const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
+    char text[160];
+    std::snprintf(text, sizeof text, "step %ld residual %.3g move %.3g mm contacts %ld", s.step, s.residual, s.moved, s.contacts);
+    bar.show(std::max(by_steps, by_residual), text);
+    if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
+  });
+  auto yarn_out_curves = relax::with_points(yarn, state.points * run.scale);
+  yarn_out_curves.radius *= run.scale;
+  const bool final = report.stopped_by != "interrupted";
+  if (final) write_yarn(yarn_out_curves, run.output);
+  spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events{}",
+               report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
+               report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events),
+               final ? "; wrote " + run.output : std::string());
+  if (!final)
+    spdlog::warn("interrupted at step {}: {}", report.steps,
+                 options.checkpoint.empty() ? std::string("without a checkpoint file the state is lost")
+                                            : "the checkpoint " + options.checkpoint.string() + " holds the state; --resume it to go on");
+  // The residual history, thinned to at most 1000 entries.
+  json steps = json::array(), residuals = json::array(), energies = json::array();
+  const size_t stride = history.size() / 1000 + 1;
+  for (size_t i = 0; i < history.size(); ++i)
+    if (i % stride == 0 || i + 1 == history.size()) {
+      steps.push_back(static_cast<long>(history[i][0]));
+      residuals.push_back(history[i][1]);
+      energies.push_back(history[i][2]);
+    }
+  json j = {{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
+            {"control_points", system.num_points()}, {"segments", system.num_segments()},
+            {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
+            {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
+            {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
+            {"guard_events", guard_json(report.guard)},
+            {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
+            {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
+            {"yarn", yarn_json(yarn_out_curves)},
+            {"history", {{"step", steps}, {"residual", residuals}, {"energy", energies}}}};
+  j.update(run.extra);
+  if (!run.report.empty()) write_json(j, run.report);
+  if (final && !run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, run.color, run.views, run.panel);
+  return j;
+}
+
+int exit_status(const json& report) {
+  const auto stopped_by = report.at("stopped_by").get<std::string>();
+  if (stopped_by == "diverged") return 1;
+  if (stopped_by == "interrupted") return 128 + interrupt_signal();
+  return 0;
+}
+
+}  // namespace skein::cli

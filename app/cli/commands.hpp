@@ -1,0 +1,122 @@
+#pragma once
+// What the skein subcommands and jobs share: inputs, reports, pictures, progress and the yarn run.
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "relax/yarn_relax.hpp"
+#include "render/raster.hpp"
+#include "render/stitch_view.hpp"
+#include "render/yarn_view.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/project.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+
+namespace skein::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+class Stopwatch {
+public:
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+
+private:
+  std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
+};
+
+/// A one-line progress bar with an ETA on a terminal; nothing otherwise.
+class ProgressBar {
+public:
+  explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
+  /// `done` in [0, 1].
+  void show(double done, const std::string& text) {
+    if (!m_enabled || m_last.seconds() < 0.2) return;
+    m_last = {};
+    done = std::clamp(done, 0.0, 1.0);
+    const int width = 30, filled = static_cast<int>(done * width);
+    const double elapsed = m_started.seconds();
+    const double eta = done > 0 ? elapsed * (1 - done) / done : 0;
+    std::fprintf(stderr, "\r[%s%s] %3.0f%% %s ETA %dm%02ds ", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+                 100 * done, text.c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+    std::fflush(stderr);
+  }
+  ~ProgressBar() {
+    if (m_enabled) std::fprintf(stderr, "\n");
+  }
+
+private:
+  bool m_enabled;
+  Stopwatch m_started, m_last;
+};
+
+bool is_project(const fs::path& path);
+bool is_bcc(const fs::path& path);
+/// A mesh file or the input mesh of a project.
+mesh::InputMesh load_input(const fs::path& path);
+/// Labels (and tessellation values, when stored) in `path` for `mesh`: the same faces, corner for corner
+/// (vertex ids may differ).
+std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path);
+
+json stats_json(const mesh::StitchMesh& sm);
+json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels);
+json mesh_json(const mesh::InputMesh& m);
+json yarn_json(const mesh::YarnCurves& yarn);
+json guard_json(const relax::GuardCounters& g);
+/// Writes JSON atomically, or to stdout for "-".
+void write_json(const json& j, const std::string& path);
+/// JSON as "key.sub: value" lines; long lists show their first entries and a count.
+void print_text(const json& j, const std::string& prefix);
+
+/// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches); "front": the
+/// straight front alone.
+render::View view_named(const std::string& name);
+void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
+                       int panel = 900);
+void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views = "garment");
+
+/// Yarn from a .bcc file, or emitted from a project's stitch mesh.
+mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr);
+/// Writes yarn as .bcc or .obj polylines, by the extension.
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path);
+
+/// "A:B" (inclusive) or "A" → row ids.
+std::pair<int, int> parse_rows(const std::string& s);
+/// "K=V" with two integers (edge or row id = tessellation value).
+std::pair<int, int> parse_assignment(const std::string& option, const std::string& s);
+/// TYPE=F pairs of --take-up-stitch.
+std::map<std::string, double> parse_take_up(const std::string& option, const std::vector<std::string>& pairs);
+
+/// SIGINT and SIGTERM set the returned flag (relaxations stop after their step, checkpoint and return) and are
+/// remembered for the exit status, 128 + the signal.
+const std::atomic<bool>* install_interrupt_handlers();
+int interrupt_signal();  ///< 0 when none came
+
+/// The outputs of a yarn relaxation (relax-yarn, pattern --relax, run).
+struct YarnRunOutputs {
+  std::string input, output, method, backend, report, log, png, views;
+  bool progress = false;  ///< a progress bar on the terminal
+  json extra = json::object();  ///< more report fields
+  int panel = 900;              ///< picture: pixels per view
+  render::YarnColor color = render::YarnColor::StitchType;
+  double scale = 1;             ///< the relaxed yarn is written scaled by this (1/gamma, Leaf §6.2)
+};
+
+/// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
+/// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes
+/// only its report (its checkpoint holds the state). Returns the report, with the residual history.
+json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+                     const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run);
+/// The exit status for a yarn run's report: 0, 1 when it diverged, 128 + the signal when interrupted.
+int exit_status(const json& report);
+
+}  // namespace skein::cli

@@ -1,0 +1,415 @@
+#include "job.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+
+#include "commands.hpp"
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_shape.hpp"
+#include "relax/yarn_system.hpp"
+#include "stitchmesh/edits.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/stitch_model.hpp"
+
+namespace skein::cli {
+namespace {
+
+/// Reads the members of one JSON object of a job, naming "key.sub" and what was expected in its errors.
+class Keys {
+public:
+  Keys(const json& object, std::string prefix, const fs::path& file) : m_object(object), m_prefix(std::move(prefix)), m_file(file) {
+    if (!object.is_object()) fail(m_prefix.empty() ? "the job" : m_prefix, "expected an object {...}, found " + object.dump());
+  }
+
+  /// Every key must be one of `known`.
+  void only(const std::set<std::string>& known) const {
+    for (const auto& [key, value] : m_object.items())
+      if (!known.count(key)) {
+        std::string names;
+        for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+        fail(name(key), "is not a key here (known: " + names + ")");
+      }
+  }
+  bool has(const std::string& key) const { return m_object.contains(key); }
+  const json& at(const std::string& key) const { return m_object.at(key); }
+
+  double number(const std::string& key, double fallback, double low, double high) const {
+    if (!has(key)) return fallback;
+    const auto& v = at(key);
+    if (!v.is_number()) fail(name(key), "expected a number, found " + v.dump());
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < low || x > high) fail(name(key), "expected a number in [" + fmt(low) + ", " + fmt(high) + "], found " + v.dump());
+    return x;
+  }
+  long integer(const std::string& key, long fallback, long low, long high) const {
+    if (!has(key)) return fallback;
+    const auto& v = at(key);
+    if (!v.is_number_integer()) fail(name(key), "expected a whole number, found " + v.dump());
+    const long x = v.get<long>();
+    if (x < low || x > high) fail(name(key), "expected a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "], found " + v.dump());
+    return x;
+  }
+  bool flag(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_boolean()) fail(name(key), "expected true or false, found " + at(key).dump());
+    return at(key).get<bool>();
+  }
+  std::string text(const std::string& key, const std::string& fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_string() || at(key).get<std::string>().empty()) fail(name(key), "expected a non-empty string, found " + at(key).dump());
+    return at(key).get<std::string>();
+  }
+  std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices) const {
+    const std::string v = text(key, fallback);
+    if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
+      std::string names;
+      for (const auto& c : choices) names += (names.empty() ? "\"" : " or \"") + c + "\"";
+      fail(name(key), "expected " + names + ", found \"" + v + "\"");
+    }
+    return v;
+  }
+  /// A file named relative to the job file's folder, which must exist.
+  fs::path file(const std::string& key) const {
+    const fs::path p = m_file.parent_path() / text(key, "");
+    if (!fs::exists(p)) fail(name(key), "names " + p.string() + ", which does not exist");
+    return p;
+  }
+  std::string name(const std::string& key) const { return m_prefix.empty() ? key : m_prefix + "." + key; }
+  [[noreturn]] void fail(const std::string& key, const std::string& rule) const { throw Error(m_file.string(), "key '" + key + "'", rule); }
+
+private:
+  static std::string fmt(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+  const json& m_object;
+  std::string m_prefix;
+  const fs::path& m_file;
+};
+
+relax::MeshRelaxOptions mesh_options(const Keys& k) {
+  k.only({"alpha", "aspect", "k_stretch", "k_shear", "k_wale", "k_fold", "max_steps", "tolerance", "max_move", "cg_iterations"});
+  relax::MeshRelaxOptions o;
+  o.alpha = k.number("alpha", o.alpha, 1e-3, 1);
+  o.aspect = k.number("aspect", o.aspect, 1e-3, 1e3);
+  o.k_stretch = k.number("k_stretch", o.k_stretch, 0, 1e6);
+  o.k_shear = k.number("k_shear", o.k_shear, 0, 1e6);
+  o.k_wale = k.number("k_wale", o.k_wale, 0, 1e6);
+  o.k_fold = k.number("k_fold", o.k_fold, 0, 1e6);
+  o.max_steps = static_cast<int>(k.integer("max_steps", o.max_steps, 0, 1000000));
+  o.tolerance = k.number("tolerance", o.tolerance, 0, 1e3);
+  o.max_move = k.number("max_move", o.max_move, 1e-6, 1e3);
+  o.cg_iterations = static_cast<int>(k.integer("cg_iterations", o.cg_iterations, 1, 100000));
+  return o;
+}
+
+relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "checkpoint_every", "checkpoint_minutes",
+          "k_bend", "k_stretch", "k_length", "k_contact"});
+  relax::YarnRelaxOptions o;
+  o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
+  backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
+  o.max_steps = k.integer("max_steps", o.max_steps, 0, 1L << 40);
+  o.max_seconds = k.number("max_seconds", 0, 0, 1e9);
+  o.tolerance = k.number("tolerance", o.tolerance, 0, 1);
+  o.stall = k.number("stall", o.stall, 0, 1e3);
+  o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);
+  o.audit = k.flag("audit", true);
+  // Step-based checkpoints by default: a resumed job then ends exactly as an uninterrupted one would.
+  o.checkpoint_every = k.integer("checkpoint_every", 500, 0, 1L << 40);
+  o.checkpoint_minutes = k.number("checkpoint_minutes", 0, 0, 1e6);
+  o.params.k_bend = k.number("k_bend", o.params.k_bend, 0, 1e9);
+  o.params.k_stretch = k.number("k_stretch", o.params.k_stretch, 0, 1e9);
+  o.params.k_length = k.number("k_length", o.params.k_length, 0, 1e9);
+  o.params.k_contact = k.number("k_contact", o.params.k_contact, 0, 1e9);
+  return o;
+}
+
+JobEdit job_edit(const Keys& k) {
+  k.only({"fill", "pattern", "near_border", "rows", "face"});
+  JobEdit e;
+  if (k.has("fill") == k.has("pattern")) k.fail(k.name("fill"), "each edit has either \"fill\" or \"pattern\"");
+  if (k.has("fill")) {
+    e.fill = k.text("fill", "");
+    try {
+      mesh::parse_fill(e.fill);
+    } catch (const Error& error) {
+      k.fail(k.name("fill"), error.rule());
+    }
+    if (k.has("face")) k.fail(k.name("face"), "only a pattern has a first stitch");
+  } else {
+    e.pattern = k.file("pattern");
+    e.face = static_cast<int>(k.integer("face", -1, -1, 1 << 30));
+  }
+  if (k.has("near_border") && k.has("rows")) k.fail(k.name("rows"), "give \"near_border\" or \"rows\", not both");
+  e.near_border = static_cast<int>(k.integer("near_border", -1, 0, 1 << 20));
+  if (k.has("rows")) {
+    try {
+      e.rows = parse_rows(k.text("rows", ""));
+    } catch (const Error& error) {
+      k.fail(k.name("rows"), "expected a row or an inclusive range \"A:B\" with 0 <= A <= B, found " + k.at("rows").dump());
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+Job parse_job(const std::string& text, const fs::path& file) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw Error(file.string(), "byte " + std::to_string(e.byte), std::string("is not valid JSON: ") + e.what());
+  }
+  const Keys k(j, "", file);
+  k.only({"name", "mesh", "labels", "stitch_size", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
+  Job job;
+  job.file = file;
+  job.name = k.text("name", file.stem().string());
+  if (!k.has("mesh")) k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project)");
+  job.mesh = k.file("mesh");
+  if (k.text("labels", "auto") != "auto") job.labels = k.file("labels");
+  if (k.has("stitch_size")) {
+    const Keys size(k.at("stitch_size"), "stitch_size", file);
+    size.only({"width", "height"});
+    job.stitch_size.width = size.number("width", job.stitch_size.width, 1e-3, 1e4);
+    job.stitch_size.height = size.number("height", job.stitch_size.height, 1e-3, 1e4);
+  }
+  if (k.has("edits")) {
+    if (!k.at("edits").is_array()) k.fail("edits", "expected a list [...] of edits, found " + k.at("edits").dump());
+    for (size_t i = 0; i < k.at("edits").size(); ++i) job.edits.push_back(job_edit(Keys(k.at("edits")[i], "edits[" + std::to_string(i) + "]", file)));
+  }
+  const auto stage = [&](const std::string& key) {
+    if (k.has(key) && k.at(key).is_boolean()) return k.at(key).get<bool>() ? json::object() : json();
+    return k.has(key) ? k.at(key) : json::object();
+  };
+  if (const json m = stage("relax_mesh"); !m.is_null()) job.relax_mesh = mesh_options(Keys(m, "relax_mesh", file));
+  if (k.has("yarn")) {
+    const Keys yarn(k.at("yarn"), "yarn", file);
+    yarn.only({"radius", "take_up"});
+    job.yarn_radius = yarn.number("radius", 0, 0, 1e3);
+    job.take_up = yarn.number("take_up", 1, 0.1, 10);
+  }
+  if (const json y = stage("relax_yarn"); !y.is_null()) job.relax_yarn = yarn_options(Keys(y, "relax_yarn", file), job.backend);
+  job.output = file.parent_path() / k.text("output", "out/" + job.name);
+  job.pictures = k.flag("pictures", true);
+  return job;
+}
+
+Job read_job(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw Error(file.string(), "", "cannot be read (missing or no permission)");
+  std::stringstream s;
+  s << in.rdbuf();
+  return parse_job(s.str(), file);
+}
+
+namespace {
+
+/// The job's report and stage clock: every stage is timed and logged, and the report is written (atomically)
+/// however the job ends.
+class JobRun {
+public:
+  JobRun(const Job& job, bool resume) : m_job(job) {
+    m_report = {{"job", job.name}, {"job_file", job.file.string()}, {"output", job.output.string()}, {"resumed", resume},
+                {"status", "running"}, {"stages", json::array()}};
+  }
+  template <class F>
+  void stage(const std::string& name, F&& work) {
+    spdlog::info("[{}] {}", m_job.name, name);
+    Stopwatch t;
+    work();
+    m_report["stages"].push_back({{"stage", name}, {"seconds", t.seconds()}});
+    spdlog::info("[{}] {} done ({:.2f} s)", m_job.name, name, t.seconds());
+  }
+  json& report() { return m_report; }
+  void finish(const std::string& status) {
+    m_report["status"] = status;
+    m_report["total_seconds"] = m_total.seconds();
+    write_json(m_report, (m_job.output / "report.json").string());
+  }
+  std::string out(const std::string& name) const { return (m_job.output / name).string(); }
+
+private:
+  const Job& m_job;
+  json m_report;
+  Stopwatch m_total;
+};
+
+/// Fails early when the disk cannot hold what the job will write: the yarn files, a checkpoint and pictures.
+void check_space(const fs::path& folder, long points) {
+  const std::uintmax_t needed = static_cast<std::uintmax_t>(points) * 200 + (64u << 20);
+  std::error_code ec;
+  const auto space = fs::space(folder, ec);
+  if (!ec && space.available < needed)
+    throw Error(folder.string(), "", "only " + std::to_string(space.available >> 20) + " MiB free; the job needs about " + std::to_string(needed >> 20) + " MiB");
+}
+
+}  // namespace
+
+int run_job(const Job& job, bool resume, bool progress) {
+  // The output folder first: an unwritable place fails before any work.
+  std::error_code ec;
+  fs::create_directories(job.output, ec);
+  if (ec || !fs::is_directory(job.output)) throw Error(job.output.string(), "", "the output folder cannot be made: " + (ec ? ec.message() : "it is not a folder"));
+  const auto probe = job.output / ".skein-write-test";
+  if (!std::ofstream(probe)) throw Error(job.output.string(), "", "cannot write in the output folder");
+  fs::remove(probe, ec);
+  check_space(job.output, 0);
+  const fs::path checkpoint = job.output / "yarn.ckp";
+  if (resume && !job.relax_yarn) throw Error(job.file.string(), "key 'relax_yarn'", "is off, so there is nothing to resume");
+
+  auto log_sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>((job.output / "job.log").string(), !resume);
+  spdlog::default_logger()->sinks().push_back(log_sink);
+  struct DropSink {
+    ~DropSink() { spdlog::default_logger()->sinks().pop_back(); }
+  } drop_sink;
+  const auto* interrupt = install_interrupt_handlers();
+
+  JobRun run(job, resume);
+  try {
+    mesh::Project project;
+    project.stitch_size = job.stitch_size;
+    run.stage("load and label", [&] {
+      project.input = load_input(job.mesh);
+      if (job.labels.empty()) {
+        project.labels = mesh::auto_label(*project.input, mesh::default_start_edge(*project.input));
+      } else {
+        auto [labels, values] = labels_for(*project.input, job.labels);
+        project.labels = std::move(labels);
+        project.values = std::move(values);
+      }
+      run.report()["mesh"] = mesh_json(*project.input);
+      run.report()["labels"] = labels_json(*project.input, *project.labels);
+    });
+    run.stage("tessellate and edit", [&] {
+      if (!project.values) project.values = mesh::initial_values(*project.input, *project.labels, job.stitch_size);
+      auto stitch = mesh::tessellate(*project.input, *project.labels, *project.values);
+      for (const auto& edit : job.edits) {
+        std::vector<int> faces;
+        if (edit.near_border >= 0) faces = mesh::faces_near_border(stitch, edit.near_border);
+        else
+          for (int f = 0; f < static_cast<int>(stitch.faces.size()); ++f)
+            if (stitch.faces[f].row >= edit.rows.first && stitch.faces[f].row <= edit.rows.second) faces.push_back(f);
+        if (!edit.fill.empty()) {
+          stitch = mesh::fill(stitch, faces, mesh::parse_fill(edit.fill));
+          spdlog::info("filled {} over {} stitches", edit.fill, faces.size());
+        } else {
+          const auto pattern = mesh::read_pattern(edit.pattern);
+          stitch = mesh::tile_pattern(stitch, faces, pattern, edit.face >= 0 ? edit.face : mesh::lowest_left(stitch, faces));
+          spdlog::info("tiled {} over {} stitches", pattern.name, faces.size());
+        }
+      }
+      project.stitch = std::move(stitch);
+      mesh::write_project(project, run.out("stitch.skein"));
+      run.report()["stitch_mesh"] = stats_json(*project.stitch);
+      if (job.pictures) render_stitch_mesh(*project.stitch, run.out("stitch-types.png"), render::ColorBy::StitchType);
+    });
+    if (job.relax_mesh) {
+      bool stopped = false;
+      run.stage("relax the stitch mesh", [&] {
+        auto options = *job.relax_mesh;
+        options.interrupt = interrupt;
+        relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, options);
+        const auto stretch_png = [&](const std::string& name) {
+          const auto strain = relax::face_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale());
+          std::vector<Eigen::Vector3f> colors;
+          for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
+          render::write_png(render::draw(render::stitch_polygons(relaxer.relaxed(), colors), render::View{}), run.out(name));
+        };
+        if (job.pictures) stretch_png("stretch-before.png");
+        ProgressBar bar(progress);
+        double first_move = 0;
+        const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+          if (first_move == 0) first_move = s.max_displacement;
+          const double goal = options.tolerance * relaxer.r_course();
+          const double by_move = s.max_displacement > 0 && first_move > goal ? std::log(first_move / s.max_displacement) / std::log(first_move / goal) : 0;
+          char text[120];
+          std::snprintf(text, sizeof text, "mesh step %d largest move %.3g mm", s.step, s.max_displacement);
+          bar.show(std::max(static_cast<double>(s.step) / options.max_steps, by_move), text);
+        });
+        stopped = interrupt->load();
+        json history = json::array();
+        for (const auto& s : report.steps) history.push_back({{"step", s.step}, {"energy", s.energy}, {"max_displacement", s.max_displacement}});
+        run.report()["relax_mesh"] = {{"converged", report.converged}, {"steps", report.steps.size()}, {"r_course", report.r_course},
+                                      {"r_wale", report.r_wale}, {"history", history}};
+        if (stopped) return;
+        project.stitch = relaxer.relaxed();
+        mesh::write_project(project, run.out("relaxed.skein"));
+        if (job.pictures) stretch_png("stretch-after.png");
+      });
+      if (stopped) {
+        spdlog::warn("interrupted during mesh relaxation; run the job again (with --resume or without) to start over");
+        run.finish("interrupted");
+        return 128 + interrupt_signal();
+      }
+    }
+    mesh::YarnCurves yarn;
+    run.stage("emit yarn", [&] {
+      mesh::EmitOptions options;
+      options.yarn_radius = job.yarn_radius > 0 ? job.yarn_radius : 0.1 * job.stitch_size.width;
+      mesh::EmitReport emitted;
+      yarn = mesh::emit_yarn(*project.stitch, mesh::StitchLibrary::bundled(), options, &emitted);
+      check_space(job.output, static_cast<long>(yarn.points.size()));
+      write_yarn(yarn, run.out("yarn.bcc"));
+      run.report()["yarn"] = yarn_json(yarn);
+      if (job.pictures) render_yarn_tubes(yarn, run.out("yarn.png"), render::YarnColor::StitchType);
+    });
+    if (!job.relax_yarn) {
+      run.finish("done");
+      return 0;
+    }
+    int status = 0;
+    run.stage("relax the yarn", [&] {
+      auto options = *job.relax_yarn;
+      options.interrupt = interrupt;
+      options.checkpoint = checkpoint;
+      const auto system = relax::make_yarn_system(yarn, job.take_up);
+      const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);
+      auto state = relax::initial_state(system, options);
+      if (resume && fs::exists(checkpoint)) {
+        state = relax::read_checkpoint(checkpoint, relax::checkpoint_fingerprint(system, options.method), system.num_points());
+        spdlog::info("resuming the yarn from {} at step {}", checkpoint.string(), state.step);
+      } else if (resume) {
+        spdlog::warn("no checkpoint {} yet: the yarn starts from the beginning", checkpoint.string());
+      }
+      YarnRunOutputs outputs;
+      outputs.input = job.file.string();
+      outputs.output = run.out("yarn-relaxed.bcc");
+      outputs.method = relax::to_string(options.method);
+      outputs.backend = job.backend;
+      outputs.log = run.out("yarn-relax-log.csv");
+      outputs.png = job.pictures ? run.out("yarn-relaxed.png") : "";
+      outputs.views = "garment";
+      outputs.progress = progress;
+      run.report()["relax_yarn"] = relax_and_write(yarn, system, targets, options, state, outputs);
+      status = exit_status(run.report()["relax_yarn"]);
+    });
+    const auto stopped_by = run.report()["relax_yarn"]["stopped_by"].get<std::string>();
+    if (stopped_by == "interrupted") {
+      const std::string command = "skein run " + job.file.string() + " -o " + job.output.string() + " --resume";
+      spdlog::warn("go on with: {}", command);
+      run.report()["resume"] = command;
+    }
+    run.finish(stopped_by == "interrupted" ? "interrupted" : stopped_by == "diverged" ? "diverged" : "done");
+    return status;
+  } catch (const std::exception& e) {
+    run.report()["error"] = e.what();
+    run.finish("failed");
+    throw;
+  }
+}
+
+}  // namespace skein::cli
