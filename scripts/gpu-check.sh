@@ -4,7 +4,7 @@
 #
 #   scripts/gpu-check.sh bundle   here: builds with CUDA for sm_90 into build-gpu/ and packs the binaries and
 #                                 the shared libraries the GPU machine lacks into build-gpu/bundle/ (~25 MB)
-#   scripts/gpu-check.sh          there (device tool, carry build-gpu/bundle and out/sweater/sweater-relaxed.skein):
+#   scripts/gpu-check.sh          there (device tool, carry build-gpu/bundle and out/sweater/relaxed.skein):
 #                                 the cuda-labelled tests, compute-sanitizer memcheck and racecheck on the
 #                                 parity tests, the GPU benchmarks and a per-kernel profile, then a short table.
 #
@@ -71,18 +71,18 @@ print(f"{'device-to-device copy (read + write)':44s} {2 * x.numel() / (times[10]
 EOF
 
 # 4. Whole runs: ms per step at ~250k control points (the sweater at 10 mm stitches), and the main job's
-# sweater (mesh-relaxed, rib borders: out/sweater/sweater-relaxed.skein from scripts/main-job.sh) to convergence.
+# sweater (mesh-relaxed, rib borders: out/sweater/relaxed.skein from scripts/main-job.sh) to convergence.
 report() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(f\"{r['control_points']} points, {r['steps']} steps, {r['wall_seconds']:.1f} s, {1e3*r['wall_seconds']/max(r['steps'],1):.2f} ms/step, {r['stopped_by']}, residual {r['residual']:.3g}\")" "$1"; }
 "$skein" -q stitch models/sweater.obj --labels models/sweater.skein --stitch-size 10 -o "$out/sweater10.skein"
 "$skein" -q relax-yarn "$out/sweater10.skein" -o "$out/sweater10.bcc" --backend cuda --no-audit --max-steps 300 --tolerance 0 \
     --report "$out/sweater10.json"
 row "sweater 10 mm, 300 steps" "$(report "$out/sweater10.json")"
-if [[ -f out/sweater/sweater-relaxed.skein ]]; then
-  "$skein" -q relax-yarn out/sweater/sweater-relaxed.skein -o "$out/sweater.bcc" --backend cuda --no-audit --max-seconds 420 \
+if [[ -f out/sweater/relaxed.skein ]]; then
+  "$skein" -q relax-yarn out/sweater/relaxed.skein -o "$out/sweater.bcc" --backend cuda --no-audit --max-seconds 420 \
       --report "$out/sweater.json" --log "$out/sweater-log.csv" --png "$out/sweater.png"
   row "sweater (main job) to convergence" "$(report "$out/sweater.json")"
 else
-  row "sweater (main job)" "skipped: carry out/sweater/sweater-relaxed.skein"
+  row "sweater (main job)" "skipped: carry out/sweater/relaxed.skein"
 fi
 "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$out/mitten.skein"
 "$skein" -q relax-yarn "$out/mitten.skein" -o "$out/mitten.bcc" --backend cuda --report "$out/mitten.json"

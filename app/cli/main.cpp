@@ -248,6 +248,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("JOB", run_file, "job file (.json)")->required();
   run_cmd->add_option("-o,--output", run_output, "output folder (default: the job's \"output\")");
   run_cmd->add_flag("--resume", run_resume, "go on from the yarn checkpoint in the output folder");
+  double run_seconds = -1;
+  run_cmd->add_option("--yarn-seconds", run_seconds, "wall-time cap of the yarn relaxation [s], in place of the job's (0: none; for overnight runs)");
 
   // skein stats
   auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
@@ -390,6 +392,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) {
       auto job = read_job(run_file);
       if (!run_output.empty()) job.output = run_output;
+      if (run_seconds >= 0 && job.relax_yarn) job.relax_yarn->max_seconds = run_seconds;
       return run_job(job, run_resume, !quiet && isatty(fileno(stderr)));
     }
     if (*stats) {

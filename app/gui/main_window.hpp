@@ -118,6 +118,7 @@ private:
   relax::Backend m_backend = relax::Backend::Auto;
   QElapsedTimer m_live_clock;  ///< since the last live redraw
   qint64 m_live_wait = 0;      ///< [ms] before the next one
+  QElapsedTimer m_status_clock;  ///< since the job's progress was last shown
 
   QString m_last_error;
   QPointer<QMessageBox> m_error_box;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <QElapsedTimer>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QWheelEvent>
@@ -134,6 +135,8 @@ QMatrix4x4 Viewport::projection_matrix() const {
 }
 
 void Viewport::paintGL() {
+  QElapsedTimer clock;
+  clock.start();
   glClearColor(0.93f, 0.94f, 0.96f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (!m_gl_error.isEmpty()) return;
@@ -157,6 +160,8 @@ void Viewport::paintGL() {
     glDrawArrays(GL_LINES, 0, m_line_count);
   }
   m_program.release();
+  glFinish();
+  m_paint_ms = clock.elapsed();
 }
 
 QPoint Viewport::to_screen(const Eigen::Vector3d& point) const {

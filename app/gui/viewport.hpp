@@ -34,6 +34,8 @@ public:
   std::optional<Hit> hit_at(const QPoint& pixel) const;
   /// Empty while OpenGL works; else why it does not (no 3.3 context, a shader that failed).
   const QString& gl_error() const { return m_gl_error; }
+  /// How long the last frame took to draw [ms] (with a software renderer, far from free).
+  qint64 last_paint_ms() const { return m_paint_ms; }
 
 signals:
   void pressed(const skein::gui::Hit& hit, Qt::KeyboardModifiers modifiers);
@@ -63,6 +65,7 @@ private:
   QOpenGLVertexArrayObject m_triangle_vao, m_line_vao;
   QOpenGLBuffer m_triangle_vbo{QOpenGLBuffer::VertexBuffer}, m_line_vbo{QOpenGLBuffer::VertexBuffer};
   int m_triangle_count = 0, m_line_count = 0;
+  qint64 m_paint_ms = 0;
 
   // Camera: orbit about a target point.
   Eigen::Vector3d m_target = Eigen::Vector3d::Zero();
