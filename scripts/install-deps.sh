@@ -6,6 +6,7 @@ packages=(
   libopenmesh-dev libeigen3-dev libosd-dev libassimp-dev
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libtbb-dev libpng-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
+  clang libclang-rt-14-dev libomp-dev
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -172,6 +172,8 @@ Job parse_job(const std::string& text, const fs::path& file) {
     j = json::parse(text);
   } catch (const json::parse_error& e) {
     throw Error(file.string(), "byte " + std::to_string(e.byte), std::string("is not valid JSON: ") + e.what());
+  } catch (const json::exception& e) {  // numbers too large for a double, found by fuzzing
+    throw Error(file.string(), "", std::string("is not valid JSON: ") + e.what());
   }
   const Keys k(j, "", file);
   k.only({"name", "mesh", "labels", "stitch_size", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});

@@ -76,10 +76,12 @@ StitchModel parse_stitch_model(const std::string& text, const std::string& file)
     for (std::string w; words >> w;) tok.push_back(w);
     if (tok.empty()) continue;
     if (tok[0] == "stitch") {
+      if (have_name) fail("a second 'stitch' line: a file holds one stitch model");
       if (tok.size() != 2) fail("expected 'stitch NAME'");
       m.name = tok[1];
       have_name = true;
     } else if (tok[0] == "shape") {
+      if (have_shape) fail("a second 'shape' line: the pieces read so far were checked against the first");
       if (tok.size() < 3 || tok.size() > 4 || (tok.size() == 4 && tok[3] != "no-wale"))
         fail("expected 'shape BOTTOM TOP' or 'shape BOTTOM TOP no-wale'");
       char* end = nullptr;

@@ -309,6 +309,8 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("key 'relax_mesh.alpha'"), std::string::npos) << msg;
   msg = error_for("json.json", R"({"mesh": )");
   EXPECT_NE(msg.find("not valid JSON"), std::string::npos) << msg;
+  msg = error_for("overflow.json", R"({"name": 1e99999})");  // found by fuzzing
+  EXPECT_NE(msg.find("not valid JSON"), std::string::npos) << msg;
   const auto r = run_skein("run " + (dir / "none.json").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("none.json"), std::string::npos) << r.output;

@@ -48,6 +48,9 @@ TEST(StitchModel, BadModelsNameTheFileAndRule) {
       {"stitch q\nshape 1 1\n", "no yarn piece"},
       {"stitch q\nshape 1 1\npiece\n L\n", "fewer than 2 points"},
       {"stitch kp\nshape 1 1\npiece\n L\n T0a\npiece\n T0b\n R\npiece\n B0a\n B0b\n", "stitch type 'kp' needs shape 1 2"},
+      // Found by fuzzing: a second shape line made the pieces read before it invalid, so the model did not read back.
+      {"stitch q\nshape 1 1\npiece\n L\n T0a\nshape 1 1 no-wale\n", "a second 'shape' line"},
+      {"stitch q\nstitch r\n", "a second 'stitch' line"},
   };
   for (const auto& [text, rule] : cases) {
     const std::string msg = parse_error(text);
