@@ -56,6 +56,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_view, &Viewport::released, this, &MainWindow::on_released);
   connect(m_view, &Viewport::gl_failed, this, [this](const QString& reason) { show_error(tr("The 3D view cannot draw: %1").arg(reason)); });
   connect(&m_doc, &Document::changed, this, &MainWindow::refresh);
+  connect(m_doc.undo_stack(), &QUndoStack::indexChanged, this, [this] {
+    if (const auto text = m_doc.undo_stack()->undoText(); !text.isEmpty()) statusBar()->showMessage(text);
+  });
   connect(&m_doc, &Document::opened, this, [this] {
     m_selected.clear();
     set_layer(m_doc.state().stitch ? Layer::Stitch : Layer::Input);
@@ -712,11 +715,14 @@ void MainWindow::on_job_finished() {
     auto& yarn_job = static_cast<YarnRelaxJob&>(*job);
     attempt([&] { m_doc.set_yarn(yarn_job.yarn(), true, tr("Relax yarn")); });
     m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4 pull-through events")
-                             .arg(p.stopped_by).arg(p.step).arg(yarn_job.backend()).arg(p.pull_through));
+                             .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
+                             .arg(p.step)
+                             .arg(yarn_job.backend())
+                             .arg(p.pull_through));
   } else {
     auto& mesh_job = static_cast<MeshRelaxJob&>(*job);
     attempt([&] { m_doc.set_relaxed_mesh(mesh_job.stitch(), mesh_job.rest()); });
-    m_job_label->setText(tr("stitch mesh %1 after %2 steps").arg(p.stopped_by).arg(p.step));
+    m_job_label->setText(tr("stitch mesh %1 after %2 steps").arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by).arg(p.step));
   }
   emit job_finished();
 }
