@@ -80,7 +80,7 @@ public:
   }
   /// A file named relative to the job file's folder, which must exist.
   fs::path file(const std::string& key) const {
-    const fs::path p = m_file.parent_path() / text(key, "");
+    const fs::path p = (m_file.parent_path() / text(key, "")).lexically_normal();
     if (!fs::exists(p)) fail(name(key), "names " + p.string() + ", which does not exist");
     return p;
   }
@@ -205,7 +205,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     job.take_up = yarn.number("take_up", 1, 0.1, 10);
   }
   if (const json y = stage("relax_yarn"); !y.is_null()) job.relax_yarn = yarn_options(Keys(y, "relax_yarn", file), job.backend);
-  job.output = file.parent_path() / k.text("output", "out/" + job.name);
+  job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();
   job.pictures = k.flag("pictures", true);
   return job;
 }
