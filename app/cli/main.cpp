@@ -1,15 +1,12 @@
 // skein: the command line. Thin: parses arguments, calls the library, prints what happened.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <set>
 
-#include <omp.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -21,7 +18,6 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
-#include "cuda/yarn_relaxer.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
