@@ -108,6 +108,20 @@ void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, ren
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
+std::vector<Eigen::Vector3f> stretch_colors(const relax::FaceStretch& strain) {
+  std::vector<Eigen::Vector3f> colors;
+  colors.reserve(strain.area_strain.size());
+  for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
+  return colors;
+}
+
+void render_stretch(const mesh::StitchMesh& sm, double r_course, double r_wale, const std::string& path) {
+  Stopwatch t;
+  const auto colors = stretch_colors(relax::face_stretch(sm, r_course, r_wale));
+  render::write_png(render::draw(render::stitch_polygons(sm, colors), render::View{}), path);
+  spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
+}
+
 bool is_bcc(const fs::path& path) { return path.extension() == ".bcc"; }
 
 mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report) {

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
 #include "render/raster.hpp"
 #include "render/stitch_view.hpp"
@@ -83,6 +84,10 @@ render::View view_named(const std::string& name);
 void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
                        int panel = 900);
 void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views = "garment");
+/// Area-strain colours per face (blue compressed, white at rest, red stretched).
+std::vector<Eigen::Vector3f> stretch_colors(const relax::FaceStretch& strain);
+/// The stretch picture of a stitch mesh against the rest size of mesh relaxation.
+void render_stretch(const mesh::StitchMesh& sm, double r_course, double r_wale, const std::string& path);
 
 /// Yarn from a .bcc file, or emitted from a project's stitch mesh.
 mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr);

@@ -325,13 +325,7 @@ int run_job(const Job& job, bool resume, bool progress) {
         auto options = *job.relax_mesh;
         options.interrupt = interrupt;
         relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, options);
-        const auto stretch_png = [&](const std::string& name) {
-          const auto strain = relax::face_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale());
-          std::vector<Eigen::Vector3f> colors;
-          for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
-          render::write_png(render::draw(render::stitch_polygons(relaxer.relaxed(), colors), render::View{}), run.out(name));
-        };
-        if (job.pictures) stretch_png("stretch-before.png");
+        if (job.pictures) render_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale(), run.out("stretch-before.png"));
         ProgressBar bar(progress);
         double first_move = 0;
         const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
@@ -350,7 +344,7 @@ int run_job(const Job& job, bool resume, bool progress) {
         if (stopped) return;
         project.stitch = relaxer.relaxed();
         mesh::write_project(project, run.out("relaxed.skein"));
-        if (job.pictures) stretch_png("stretch-after.png");
+        if (job.pictures) render_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale(), run.out("stretch-after.png"));
       });
       if (stopped) {
         spdlog::warn("interrupted during mesh relaxation; run the job again (with --resume or without) to start over");

@@ -433,14 +433,7 @@ int main(int argc, char** argv) {
       relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, relax_options);
       spdlog::info("attached {} stitch vertices to the limit surface; rest r_course = {:.3f} mm, r_wale = {:.3f} mm ({:.2f} s)",
                    project.stitch->vertices.size(), relaxer.r_course(), relaxer.r_wale(), t.seconds());
-      const auto stretch_png = [&](const mesh::StitchMesh& sm, const std::string& path) {
-        const auto strain = relax::face_stretch(sm, relaxer.r_course(), relaxer.r_wale());
-        std::vector<Eigen::Vector3f> colors;
-        for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
-        render::write_png(render::draw(render::stitch_polygons(sm, colors), render::View{}), path);
-        spdlog::info("wrote {}", path);
-      };
-      if (!relax_png_before.empty()) stretch_png(relaxer.relaxed(), relax_png_before);
+      if (!relax_png_before.empty()) render_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale(), relax_png_before);
       t = {};
       const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
         spdlog::info("step {:4d}  energy {:.6g}  largest move {:.4f} mm  cg {:3d}  h {:.3g}", s.step, s.energy, s.max_displacement, s.cg_iterations, s.time_step);
@@ -449,12 +442,10 @@ int main(int argc, char** argv) {
       project.stitch = relaxer.relaxed();
       mesh::write_project(project, relax_out);
       spdlog::info("wrote {}", relax_out);
-      if (!relax_png.empty()) stretch_png(*project.stitch, relax_png);
+      if (!relax_png.empty()) render_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale(), relax_png);
       if (!relax_ply.empty()) {
         const auto strain = relax::face_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale());
-        std::vector<Eigen::Vector3f> colors;
-        for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
-        render::write_ply(*project.stitch, colors, {{"edge_strain", strain.edge_strain}, {"area_strain", strain.area_strain}}, relax_ply);
+        render::write_ply(*project.stitch, stretch_colors(strain), {{"edge_strain", strain.edge_strain}, {"area_strain", strain.area_strain}}, relax_ply);
         spdlog::info("wrote {}", relax_ply);
       }
       if (!relax_report.empty()) {

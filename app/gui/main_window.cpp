@@ -419,18 +419,9 @@ bool MainWindow::export_stitch_ply(const QString& path) {
   return attempt([&] {
     const auto& state = m_doc.state();
     if (!state.stitch) throw Error("there is no stitch mesh yet: Stitch > Generate stitch mesh");
-    std::vector<Eigen::Vector3f> colors;
-    std::vector<double> strain;
-    if (state.rest) strain = relax::face_stretch(*state.stitch, state.rest->r_course, state.rest->r_wale).area_strain;
-    for (size_t f = 0; f < state.stitch->faces.size(); ++f) {
-      const auto& face = state.stitch->faces[f];
-      colors.push_back(m_coloring == Coloring::Row ? render::row_color(face.row)
-                       : m_coloring == Coloring::Stretch && !strain.empty() ? render::strain_color(strain[f])
-                                                                             : render::stitch_color(face.type));
-    }
     std::vector<std::pair<std::string, std::vector<double>>> values;
-    if (!strain.empty()) values.emplace_back("area_strain", strain);
-    render::write_ply(*state.stitch, colors, values, fs_path(path));
+    if (state.rest) values.emplace_back("area_strain", relax::face_stretch(*state.stitch, state.rest->r_course, state.rest->r_wale).area_strain);
+    render::write_ply(*state.stitch, face_colors(*state.stitch, m_coloring, state.rest), values, fs_path(path));
     statusBar()->showMessage(tr("Wrote %1").arg(path));
   });
 }

@@ -109,6 +109,18 @@ Geometry input_geometry(const mesh::InputMesh& input, const std::optional<mesh::
   return g;
 }
 
+std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest) {
+  std::vector<double> strain;
+  if (coloring == Coloring::Stretch && rest) strain = relax::face_stretch(stitch, rest->r_course, rest->r_wale).area_strain;
+  std::vector<Eigen::Vector3f> colors(stitch.faces.size(), kUnlabeledFace);
+  for (size_t f = 0; f < stitch.faces.size(); ++f) {
+    if (coloring == Coloring::StitchType) colors[f] = render::stitch_color(stitch.faces[f].type);
+    if (coloring == Coloring::Row) colors[f] = render::row_color(stitch.faces[f].row);
+    if (!strain.empty()) colors[f] = render::strain_color(strain[f]);
+  }
+  return colors;
+}
+
 Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest,
                          const std::vector<char>& selected) {
   Geometry g;
@@ -116,14 +128,10 @@ Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, cons
   loops.reserve(stitch.faces.size());
   for (const auto& f : stitch.faces) loops.push_back(f.vertices);
   set_pick(g, stitch.vertices, loops);
-  std::vector<double> strain;
-  if (coloring == Coloring::Stretch && rest) strain = relax::face_stretch(stitch, rest->r_course, rest->r_wale).area_strain;
+  const auto colors = face_colors(stitch, coloring, rest);
   for (size_t f = 0; f < stitch.faces.size(); ++f) {
     const auto& face = stitch.faces[f];
-    Color color = kUnlabeledFace;
-    if (coloring == Coloring::StitchType) color = render::stitch_color(face.type);
-    if (coloring == Coloring::Row) color = render::row_color(face.row);
-    if (!strain.empty()) color = render::strain_color(strain[f]);
+    Color color = colors[f];
     if (f < selected.size() && selected[f]) color = mix(color, kSelected, 0.6f);
     add_polygon(g, stitch.vertices, face.vertices, color);
     for (int k = 0; k < face.size(); ++k) add_line(g, stitch.vertices[face.vertex(k)], stitch.vertices[face.vertex(k + 1)], Color::Constant(0.1f));

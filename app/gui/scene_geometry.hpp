@@ -34,6 +34,9 @@ enum class Coloring { StitchType, Row, Stretch };
 Geometry input_geometry(const mesh::InputMesh& input, const std::optional<mesh::Labeling>& labels,
                         const std::optional<mesh::TessellationValues>& values);
 
+/// Each stitch's colour: its stitch type, its row, or its area strain against `rest` (grey without one).
+std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest);
+
 /// The stitch mesh coloured by stitch type, row or stretch (area strain against `rest`; grey without one),
 /// selected faces tinted yellow, edges dark, cable edges teal.
 Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest,
