@@ -226,7 +226,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   if (!run.log.empty()) {
     // Going on from a checkpoint, the log keeps its rows up to the checkpoint's step (a killed run may have
     // logged further) and goes on from there.
-    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings\n";
+    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings,seconds\n";
     if (state.step > 0) {
       std::ifstream old(run.log);
       std::string line;
@@ -241,10 +241,12 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   spdlog::info("relaxing with {} ({} CPU threads for the host side)", run.method, omp_get_max_threads());
   const double log_tol = std::log(std::max(options.tolerance, 1e-12));
   std::vector<std::array<double, 3>> history;  // step, residual, energy
+  const Stopwatch clock;
   const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
     if (log)
       *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << std::endl;  // flushed: a long job's log can be followed
+           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds()
+           << std::endl;  // flushed: a long job's log can be followed
     history.push_back({static_cast<double>(s.step), s.residual, s.energy});
     const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
     const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;

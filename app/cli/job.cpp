@@ -340,7 +340,8 @@ int run_job(const Job& job, bool resume, bool progress) {
         json history = json::array();
         for (const auto& s : report.steps) history.push_back({{"step", s.step}, {"energy", s.energy}, {"max_displacement", s.max_displacement}});
         run.report()["relax_mesh"] = {{"converged", report.converged}, {"steps", report.steps.size()}, {"r_course", report.r_course},
-                                      {"r_wale", report.r_wale}, {"history", history}};
+                                      {"r_wale", report.r_wale}, {"turned_over_before", report.turned_over_before},
+                                      {"turned_over_after", report.turned_over_after}, {"history", history}};
         if (stopped) return;
         project.stitch = relaxer.relaxed();
         mesh::write_project(project, run.out("relaxed.skein"));

@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
   relax_cmd->add_option("--aspect", relax_options.aspect, "stitch aspect a = r_wale / r_course")->capture_default_str();
   relax_cmd->add_option("--steps", relax_options.max_steps, "step cap")->capture_default_str();
   relax_cmd->add_option("--tolerance", relax_options.tolerance, "stop when no vertex moves more than this × r_course in a step")->capture_default_str();
-  relax_cmd->add_option("--time-step", relax_options.time_step, "backward Euler step h [mm] (0: 10 r_course)")->capture_default_str();
+  relax_cmd->add_option("--time-step", relax_options.time_step, "backward Euler step h [mm] (0: 1000 r_course)")->capture_default_str();
   relax_cmd->add_option("--k-stretch", relax_options.k_stretch, "stretch stiffness κ_stretch")->capture_default_str();
   relax_cmd->add_option("--k-shear", relax_options.k_shear, "shear stiffness κ_shear")->capture_default_str();
   relax_cmd->add_option("--k-wale", relax_options.k_wale, "wale strut stiffness κ_wale")->capture_default_str();
@@ -439,6 +439,8 @@ int main(int argc, char** argv) {
         spdlog::info("step {:4d}  energy {:.6g}  largest move {:.4f} mm  cg {:3d}  h {:.3g}", s.step, s.energy, s.max_displacement, s.cg_iterations, s.time_step);
       });
       spdlog::info("{} after {} steps ({:.2f} s)", report.converged ? "converged" : "stopped at the step cap", report.steps.size(), t.seconds());
+      spdlog::log(report.turned_over_after > 0 ? spdlog::level::warn : spdlog::level::info, "stitches turned over: {} after attachment, {} after relaxation",
+                  report.turned_over_before, report.turned_over_after);
       project.stitch = relaxer.relaxed();
       mesh::write_project(project, relax_out);
       spdlog::info("wrote {}", relax_out);
@@ -452,7 +454,8 @@ int main(int argc, char** argv) {
         json steps = json::array();
         for (const auto& s : report.steps)
           steps.push_back({{"step", s.step}, {"energy", s.energy}, {"max_displacement", s.max_displacement}, {"cg_iterations", s.cg_iterations}, {"time_step", s.time_step}});
-        write_json({{"r_course", report.r_course}, {"r_wale", report.r_wale}, {"initial_energy", report.initial_energy}, {"converged", report.converged}, {"steps", steps}},
+        write_json({{"r_course", report.r_course}, {"r_wale", report.r_wale}, {"initial_energy", report.initial_energy}, {"converged", report.converged},
+                    {"turned_over_before", report.turned_over_before}, {"turned_over_after", report.turned_over_after}, {"steps", steps}},
                    relax_report);
       }
       return 0;

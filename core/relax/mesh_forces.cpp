@@ -13,10 +13,16 @@ Stretch stretch(const Vec3& xi, const Vec3& xj, double rest, double k) {
   Stretch s;
   s.energy = k * (d - rest - rest * std::log(d / rest));
   s.force_i = k * (rest / d - 1) * u;
+  return s;
+}
+
+Mat3 stretch_jacobian(const Vec3& xi, const Vec3& xj, double rest, double k) {
+  const Vec3 w = xi - xj;
+  const double d = std::max(w.norm(), 1e-12);
+  const Vec3 u = w / d;
   // d/dx_i of k (ℓ/d − 1) u: k/d [(ℓ/d − 1)(I − u uᵀ) − (ℓ/d) u uᵀ]
   const Mat3 uu = u * u.transpose();
-  s.jacobian = k / d * ((rest / d - 1) * (Mat3::Identity() - uu) - (rest / d) * uu);
-  return s;
+  return k / d * ((rest / d - 1) * (Mat3::Identity() - uu) - (rest / d) * uu);
 }
 
 Shear shear(const Vec3& xi, const Vec3& xj, const Vec3& xk, double k) {
@@ -24,12 +30,20 @@ Shear shear(const Vec3& xi, const Vec3& xj, const Vec3& xk, double k) {
   const double s = a.dot(b);
   // ds/dx for (i, j, k) and the constant second derivatives of s.
   const Vec3 g[3] = {b, -a - b, a};
-  const double h[3][3] = {{0, -1, 1}, {-1, 2, -1}, {1, -1, 0}};
   Shear out;
   out.energy = 0.25 * k * s * s;
   for (int p = 0; p < 3; ++p) out.force[p] = -0.5 * k * s * g[p];
+  return out;
+}
+
+ShearJacobian shear_jacobian(const Vec3& xi, const Vec3& xj, const Vec3& xk, double k) {
+  const Vec3 a = xi - xj, b = xk - xj;
+  const double s = a.dot(b);
+  const Vec3 g[3] = {b, -a - b, a};
+  const double h[3][3] = {{0, -1, 1}, {-1, 2, -1}, {1, -1, 0}};  // the constant second derivatives of s
+  ShearJacobian out;
   for (int p = 0; p < 3; ++p)
-    for (int q = 0; q < 3; ++q) out.jacobian[p][q] = -0.5 * k * (g[p] * g[q].transpose() + s * h[p][q] * Mat3::Identity());
+    for (int q = 0; q < 3; ++q) out.block[p][q] = -0.5 * k * (g[p] * g[q].transpose() + s * h[p][q] * Mat3::Identity());
   return out;
 }
 
@@ -44,6 +58,18 @@ Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wal
   Strut out;
   out.energy = k * (d - r) * (d - r) / (2 * r);
   out.force_i = -k * (d / r - 1) * u;  // = −k w (1/r − 1/d)
+  return out;
+}
+
+StrutJacobian wale_strut_jacobian(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale, double k) {
+  const Vec3 w = xi - xk;
+  const double d = std::max(w.norm(), 1e-12);
+  const Vec3 u = w / d;
+  const Vec3 eij = xi - xj, ekj = xk - xj;
+  const double span = eij.norm() + ekj.norm();
+  const bool follows = span > rest_wale;
+  const double r = follows ? span : rest_wale;
+  StrutJacobian out;
   // f_i = −k w (1/r − 1/d): d f_i/d x_b = −k [dw/dx_b (1/r − 1/d) + w (−dr/dx_b / r² + dd/dx_b / d²)]
   const Vec3 ui = eij.norm() > 0 ? Vec3(eij.normalized()) : Vec3::Zero(), uk = ekj.norm() > 0 ? Vec3(ekj.normalized()) : Vec3::Zero();
   const Vec3 dr[3] = {follows ? ui : Vec3::Zero(), follows ? Vec3(-ui - uk) : Vec3::Zero(), follows ? uk : Vec3::Zero()};
@@ -51,8 +77,8 @@ Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wal
   const double dw[3] = {1, 0, -1};
   for (int b = 0; b < 3; ++b) {
     const Mat3 dfi = -k * (dw[b] * (1 / r - 1 / d) * Mat3::Identity() + w * (-dr[b] / (r * r) + dd[b] / (d * d)).transpose());
-    out.jacobian[0][b] = dfi;
-    out.jacobian[1][b] = -dfi;  // f_k = −f_i
+    out.block[0][b] = dfi;
+    out.block[1][b] = -dfi;  // f_k = −f_i
   }
   return out;
 }

@@ -1,11 +1,14 @@
 #include "relax/mesh_relax.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
 
 #include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
 
 #include "common/error.hpp"
 #include "relax/mesh_forces.hpp"
@@ -14,6 +17,8 @@ namespace skein::relax {
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
+using Basis = Eigen::Matrix<double, 3, 2>;
+using SystemMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 void MeshRelaxOptions::validate() const {
   const auto need = [](bool ok, const char* what, const std::string& rule) {
@@ -39,16 +44,20 @@ struct Corner {
   int i, j, k;
 };
 /// One term of the linear system: a symmetric block K on a pair (A gets −hK on both diagonals, +hK off them).
+/// `slot` numbers the pair in the system's pattern (Impl::pair_blocks).
 struct PairBlock {
-  int i, j;
+  int i, j, slot;
   Mat3 K;
 };
-/// A rank-1 term c g gᵀ over three vertices (Gauss-Newton part of the shear).
+/// A rank-1 term c g gᵀ over the three vertices of shear corner `corner` (Gauss-Newton part of the shear and
+/// the fold guard).
 struct RankOne {
-  int v[3];
+  int corner;
   Vec3 g[3];
   double c;
 };
+/// Where a 2×2 block of the system lies in its values: the offsets of its two rows.
+using BlockSlot = std::array<int, 2>;
 }  // namespace
 
 struct MeshRelaxer::Impl {
@@ -65,6 +74,16 @@ struct MeshRelaxer::Impl {
   std::vector<Corner> shears, struts;
   std::vector<Vec3> corner_normal;  // surface normal at each shear corner's middle vertex, at attachment
   double r_course = 0, r_wale = 0, h = 0;
+  // Yuksel's shear (eq. 3) is cubic in length while the stretch force (eq. 2) is a pure strain: the paper's
+  // stiffnesses hold for stitches of unit size. Both terms are applied in units of the rest size r, so that
+  // κ_shear, κ_fold mean the same for 1 mm and 10 mm stitches: κ_shear / r³ and κ_fold / r (energy ∝ κ r).
+  double k_shear = 0, k_fold = 0;
+  SystemMatrix system;            // I + hK: its pattern is fixed (every pair of vertices some term joins)
+  std::vector<double> stiffness;  // K's values in that pattern
+  std::vector<std::array<BlockSlot, 4>> pair_blocks;    // (i,i), (j,j), (i,j), (j,i) of each spring, then strut
+  std::vector<std::array<BlockSlot, 9>> corner_blocks;  // (a,b) of each shear corner's (i, j, k), row-major
+  std::vector<int> diagonal;                            // each row's diagonal entry
+  double current_energy = 0;
   int steps_done = 0;
 
   Impl(const std::vector<Vec3>& cp, const std::vector<std::vector<int>>& cf, const mesh::StitchMesh& s, const MeshRelaxOptions& o)
@@ -73,13 +92,13 @@ struct MeshRelaxer::Impl {
   double energy(const std::vector<Vec3>& p) const {
     double e = 0;
     for (const auto& s : springs) e += forces::stretch(p[s.i], p[s.j], s.rest, s.stiffness).energy;
-    for (const auto& c : shears) e += forces::shear(p[c.i], p[c.j], p[c.k], options.k_shear).energy;
+    for (const auto& c : shears) e += forces::shear(p[c.i], p[c.j], p[c.k], k_shear).energy;
     for (const auto& c : struts) e += forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale).energy;
-    if (options.k_fold > 0)
+    if (k_fold > 0)
       for (size_t q = 0; q < shears.size(); ++q) {
         const auto& c = shears[q];
         // Shear corners run (previous, corner, next) counter-clockwise; the guard's area wants (next, corner, previous).
-        e += forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, options.k_fold).energy;
+        e += forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, k_fold).energy;
       }
     return e;
   }
@@ -90,6 +109,7 @@ struct MeshRelaxer::Impl {
     pairs.clear();
     ranks.clear();
     for (const auto& s : springs) {
+      const int slot = static_cast<int>(pairs.size());
       const auto t = forces::stretch(p[s.i], p[s.j], s.rest, s.stiffness);
       f[s.i] += t.force_i;
       f[s.j] -= t.force_i;
@@ -98,27 +118,29 @@ struct MeshRelaxer::Impl {
       const double d = std::max(w.norm(), 1e-12);
       const Vec3 u = w / d;
       const Mat3 uu = u * u.transpose();
-      pairs.push_back({s.i, s.j, s.stiffness / d * (std::min(s.rest / d - 1, 0.0) * (Mat3::Identity() - uu) - (s.rest / d) * uu)});
+      pairs.push_back({s.i, s.j, slot, s.stiffness / d * (std::min(s.rest / d - 1, 0.0) * (Mat3::Identity() - uu) - (s.rest / d) * uu)});
     }
-    for (const auto& c : shears) {
-      const auto t = forces::shear(p[c.i], p[c.j], p[c.k], options.k_shear);
+    for (size_t q = 0; q < shears.size(); ++q) {
+      const auto& c = shears[q];
+      const auto t = forces::shear(p[c.i], p[c.j], p[c.k], k_shear);
       f[c.i] += t.force[0];
       f[c.j] += t.force[1];
       f[c.k] += t.force[2];
       const Vec3 a = p[c.i] - p[c.j], b = p[c.k] - p[c.j];
-      ranks.push_back({{c.i, c.j, c.k}, {b, -a - b, a}, 0.5 * options.k_shear});
+      ranks.push_back({static_cast<int>(q), {b, -a - b, a}, 0.5 * k_shear});
     }
-    if (options.k_fold > 0)
+    if (k_fold > 0)
       for (size_t q = 0; q < shears.size(); ++q) {
         const auto& c = shears[q];
-        const auto t = forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, options.k_fold);
+        const auto t = forces::fold_guard(p[c.k], p[c.j], p[c.i], corner_normal[q], r_course * r_wale, options.fold_area, k_fold);
         if (!t.active) continue;
         f[c.k] += t.force[0];
         f[c.j] += t.force[1];
         f[c.i] += t.force[2];
-        ranks.push_back({{c.k, c.j, c.i}, {t.gradient[0], t.gradient[1], t.gradient[2]}, options.k_fold / (r_course * r_wale)});
+        ranks.push_back({static_cast<int>(q), {t.gradient[2], t.gradient[1], t.gradient[0]}, k_fold / (r_course * r_wale)});
       }
     for (const auto& c : struts) {
+      const int slot = static_cast<int>(pairs.size());
       const auto t = forces::wale_strut(p[c.i], p[c.j], p[c.k], r_wale, options.k_wale);
       f[c.i] += t.force_i;
       f[c.k] -= t.force_i;
@@ -128,82 +150,83 @@ struct MeshRelaxer::Impl {
       const double r = std::max(r_wale, (p[c.i] - p[c.j]).norm() + (p[c.k] - p[c.j]).norm());
       const Vec3 u = w / d;
       const Mat3 uu = u * u.transpose();
-      pairs.push_back({c.i, c.k, -options.k_wale * (std::max(1 / r - 1 / d, 0.0) * (Mat3::Identity() - uu) + (1 / r) * uu)});
+      pairs.push_back({c.i, c.k, slot, -options.k_wale * (std::max(1 / r - 1 / d, 0.0) * (Mat3::Identity() - uu) + (1 / r) * uu)});
     }
   }
 
-  /// y = (I − hJ) c, matrix-free.
-  void multiply(double step, const std::vector<PairBlock>& pairs, const std::vector<RankOne>& ranks, const std::vector<Vec3>& c, std::vector<Vec3>& y) const {
-    y = c;
-    for (const auto& b : pairs) {
-      const Vec3 t = -step * (b.K * (c[b.i] - c[b.j]));
-      y[b.i] += t;
-      y[b.j] -= t;
-    }
-    for (const auto& r : ranks) {
-      const double s = r.g[0].dot(c[r.v[0]]) + r.g[1].dot(c[r.v[1]]) + r.g[2].dot(c[r.v[2]]);
-      for (int q = 0; q < 3; ++q) y[r.v[q]] += step * r.c * s * r.g[q];
-    }
-  }
-
-  /// Baraff & Witkin 1998: the constraint filter of each vertex. The normal direction is never free; border
-  /// vertices may only slide along the border; a border vertex without two border neighbours is fixed.
-  std::vector<Mat3> filters() const {
-    std::vector<Mat3> S(x.size());
+  /// Baraff & Witkin 1998's constraint filter, as a basis of each vertex's free directions: two tangents of
+  /// the surface; one, along the border, for a border vertex; none for a border vertex without two border
+  /// neighbours. A missing direction is a zero column.
+  std::vector<Basis> free_directions() const {
+    std::vector<Basis> T(x.size());
 #pragma omp parallel for schedule(static)
     for (size_t v = 0; v < x.size(); ++v) {
       const Vec3 n = surface.evaluate(coords[v]).normal();
+      T[v].setZero();
       if (!border[v]) {
-        S[v] = Mat3::Identity() - n * n.transpose();
+        const Vec3 t = n.unitOrthogonal();
+        T[v] << t, n.cross(t);
         continue;
       }
       const auto [a, b] = border_neighbours[v];
-      if (a < 0) {
-        S[v].setZero();
-        continue;
-      }
+      if (a < 0) continue;
       Vec3 t = x[b] - x[a];
       t -= t.dot(n) * n;
-      S[v] = t.norm() > 0 ? Mat3(t.normalized() * t.normalized().transpose()) : Mat3::Zero();
+      if (t.norm() > 0) T[v].col(0) = t.normalized();
     }
-    return S;
+    return T;
   }
 
-  /// Modified preconditioned conjugate gradients (Baraff & Witkin 1998, §5.3) with block-Jacobi preconditioning.
-  int solve(double step, const std::vector<PairBlock>& pairs, const std::vector<RankOne>& ranks, const std::vector<Mat3>& S,
-            const std::vector<Vec3>& rhs, std::vector<Vec3>& dx) const {
-    const size_t n = x.size();
-    std::vector<Mat3> diag(n, Mat3::Identity());
-    for (const auto& b : pairs) diag[b.i] -= step * b.K, diag[b.j] -= step * b.K;
-    for (const auto& r : ranks)
-      for (int q = 0; q < 3; ++q) diag[r.v[q]] += step * r.c * r.g[q] * r.g[q].transpose();
-    for (auto& d : diag) d = d.inverse().eval();
-    const auto dot = [&](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-      double s = 0;
-      for (size_t v = 0; v < n; ++v) s += a[v].dot(b[v]);
-      return s;
+  /// The stiffness −∂f/∂x (definite parts) in the free directions: K = Tᵀ(−J)T, two rows per vertex, in the
+  /// fixed pattern of `system`. Then (I + hK) Δy = h Tᵀf is eq. 1 restricted to the surface, Δx = TΔy.
+  void fill_stiffness(const std::vector<PairBlock>& pairs, const std::vector<RankOne>& ranks, const std::vector<Basis>& T) {
+    std::fill(stiffness.begin(), stiffness.end(), 0.0);
+    const auto add = [&](const BlockSlot& slot, const Eigen::Matrix2d& block) {
+      stiffness[slot[0]] += block(0, 0), stiffness[slot[0] + 1] += block(0, 1);
+      stiffness[slot[1]] += block(1, 0), stiffness[slot[1] + 1] += block(1, 1);
     };
-    dx.assign(n, Vec3::Zero());
-    std::vector<Vec3> r(n), z(n), p(n), q(n);
-    for (size_t v = 0; v < n; ++v) r[v] = S[v] * rhs[v];
-    for (size_t v = 0; v < n; ++v) z[v] = S[v] * (diag[v] * r[v]);
-    p = z;
-    double delta = dot(r, z);
-    const double delta0 = delta;
-    int it = 0;
-    const double tol2 = options.cg_tolerance * options.cg_tolerance;
-    while (it < options.cg_iterations && delta > tol2 * delta0 && delta > 0) {
-      multiply(step, pairs, ranks, p, q);
-      for (size_t v = 0; v < n; ++v) q[v] = S[v] * q[v];
-      const double alpha = delta / dot(p, q);
-      for (size_t v = 0; v < n; ++v) dx[v] += alpha * p[v], r[v] -= alpha * q[v];
-      for (size_t v = 0; v < n; ++v) z[v] = S[v] * (diag[v] * r[v]);
-      const double next = dot(r, z);
-      for (size_t v = 0; v < n; ++v) p[v] = S[v] * (z[v] + (next / delta) * p[v]);
-      delta = next;
-      ++it;
+    for (const auto& b : pairs) {
+      // The pair term adds −K to (i,i), (j,j) and +K to (i,j), (j,i) of −J.
+      const auto& slot = pair_blocks[b.slot];
+      add(slot[0], -T[b.i].transpose() * b.K * T[b.i]);
+      add(slot[1], -T[b.j].transpose() * b.K * T[b.j]);
+      add(slot[2], T[b.i].transpose() * b.K * T[b.j]);
+      add(slot[3], T[b.j].transpose() * b.K * T[b.i]);
     }
-    return it;
+    for (const auto& r : ranks) {
+      const auto& c = shears[r.corner];
+      const int v[3] = {c.i, c.j, c.k};
+      Eigen::Vector2d g[3];
+      for (int q = 0; q < 3; ++q) g[q] = T[v[q]].transpose() * r.g[q];
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) add(corner_blocks[r.corner][3 * p + q], r.c * g[p] * g[q].transpose());
+    }
+  }
+
+  BlockSlot block_slot(int a, int b) const {
+    const auto find = [&](int row) {
+      const int* begin = system.innerIndexPtr() + system.outerIndexPtr()[row];
+      const int* end = system.innerIndexPtr() + system.outerIndexPtr()[row + 1];
+      return static_cast<int>(std::lower_bound(begin, end, 2 * b) - system.innerIndexPtr());
+    };
+    return {find(2 * a), find(2 * a + 1)};
+  }
+
+  /// Conjugate gradients (Eigen's, Jacobi-preconditioned) on (I + hK) Δy = h Tᵀf.
+  int solve(double step, const std::vector<Basis>& T, const std::vector<Vec3>& f, std::vector<Vec3>& dx) {
+    const size_t n = x.size();
+    for (size_t q = 0; q < stiffness.size(); ++q) system.valuePtr()[q] = step * stiffness[q];
+    for (const int d : diagonal) system.valuePtr()[d] += 1;
+    Eigen::VectorXd rhs(2 * n);
+    for (size_t v = 0; v < n; ++v) rhs.segment<2>(2 * v) = step * T[v].transpose() * f[v];
+    Eigen::ConjugateGradient<SystemMatrix, Eigen::Lower | Eigen::Upper> cg;
+    cg.setMaxIterations(options.cg_iterations);
+    cg.setTolerance(options.cg_tolerance);
+    cg.compute(system);
+    const Eigen::VectorXd dy = cg.solve(rhs);
+    dx.resize(n);
+    for (size_t v = 0; v < n; ++v) dx[v] = T[v] * dy.segment<2>(2 * v);
+    return static_cast<int>(cg.iterations());
   }
 };
 
@@ -222,7 +245,10 @@ MeshRelaxer::MeshRelaxer(const std::vector<Vec3>& control_points, const std::vec
     area += 0.5 * (tris.positions[t[1]] - tris.positions[t[0]]).cross(tris.positions[t[2]] - tris.positions[t[0]]).norm();
   m->r_course = std::sqrt(options.alpha * area / (static_cast<double>(stitch.faces.size()) * options.aspect));
   m->r_wale = options.aspect * m->r_course;
-  m->h = options.time_step > 0 ? options.time_step : 10 * m->r_course;
+  m->h = options.time_step > 0 ? options.time_step : 1000 * m->r_course;
+  const double r = std::sqrt(m->r_course * m->r_wale);
+  m->k_shear = options.k_shear / (r * r * r);
+  m->k_fold = options.k_fold / r;
 
   // Attach every vertex; border vertices to the border. Each remembers its fine triangle for the walks.
   const auto attached = attach_stitch_mesh(stitch, *m->projector);
@@ -272,27 +298,56 @@ MeshRelaxer::MeshRelaxer(const std::vector<Vec3>& control_points, const std::vec
     if (it == up_from.end()) continue;
     for (int k : it->second) m->struts.push_back({i, j, k});
   }
+
+  // The pattern of the linear system: a 2×2 block for every vertex and every pair that a term joins.
+  std::vector<Eigen::Triplet<double>> pattern;
+  const auto join = [&](int a, int b) {
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c) pattern.emplace_back(2 * a + r, 2 * b + c, 0.0);
+  };
+  for (size_t v = 0; v < m->x.size(); ++v) join(static_cast<int>(v), static_cast<int>(v));
+  for (const auto& s : m->springs) join(s.i, s.j), join(s.j, s.i);
+  for (const auto& c : m->struts) join(c.i, c.k), join(c.k, c.i);
+  for (const auto& c : m->shears) {
+    const int v[3] = {c.i, c.j, c.k};
+    for (int a : v)
+      for (int b : v) join(a, b);
+  }
+  const auto dofs = static_cast<Eigen::Index>(2 * m->x.size());
+  m->system.resize(dofs, dofs);
+  m->system.setFromTriplets(pattern.begin(), pattern.end());
+  m->system.makeCompressed();
+  m->stiffness.assign(m->system.nonZeros(), 0.0);
+  for (int d = 0; d < dofs; ++d) m->diagonal.push_back(m->block_slot(d / 2, d / 2)[d % 2] + d % 2);
+  for (const auto& s : m->springs) m->pair_blocks.push_back({m->block_slot(s.i, s.i), m->block_slot(s.j, s.j), m->block_slot(s.i, s.j), m->block_slot(s.j, s.i)});
+  for (const auto& c : m->struts) m->pair_blocks.push_back({m->block_slot(c.i, c.i), m->block_slot(c.k, c.k), m->block_slot(c.i, c.k), m->block_slot(c.k, c.i)});
+  for (const auto& c : m->shears) {
+    const int v[3] = {c.i, c.j, c.k};
+    auto& blocks = m->corner_blocks.emplace_back();
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) blocks[3 * p + q] = m->block_slot(v[p], v[q]);
+  }
+  m->current_energy = m->energy(m->x);
 }
 
 MeshRelaxer::~MeshRelaxer() = default;
 
-double MeshRelaxer::energy() const { return m->energy(m->x); }
+double MeshRelaxer::energy() const { return m->current_energy; }
 
 MeshRelaxStep MeshRelaxer::step() {
   std::vector<Vec3> f, dx, next(m->x.size());
   std::vector<PairBlock> pairs;
   std::vector<RankOne> ranks;
   m->assemble(m->x, f, pairs, ranks);
-  const auto S = m->filters();
-  const double e0 = m->energy(m->x);
+  const auto T = m->free_directions();
+  m->fill_stiffness(pairs, ranks, T);
+  const double e0 = m->current_energy;
   MeshRelaxStep out;
   out.step = ++m->steps_done;
   std::vector<Attachment> moved(m->x.size());
   double step = m->h;
   for (int attempt = 0; attempt < 12; ++attempt, step *= 0.5) {
-    std::vector<Vec3> rhs(f.size());
-    for (size_t v = 0; v < f.size(); ++v) rhs[v] = step * f[v];
-    out.cg_iterations = m->solve(step, pairs, ranks, S, rhs, dx);  // eq. 1: (I − h ∂f/∂x) Δx = h f0
+    out.cg_iterations = m->solve(step, T, f, dx);  // eq. 1: (I − h ∂f/∂x) Δx = h f0, in the free directions
     const double limit = m->options.max_move * m->r_course;
     // Every vertex moves on its own: the loop splits across threads without changing the result.
 #pragma omp parallel for schedule(static)
@@ -308,6 +363,7 @@ MeshRelaxStep MeshRelaxer::step() {
       out.max_displacement = 0;
       for (size_t v = 0; v < next.size(); ++v) out.max_displacement = std::max(out.max_displacement, (next[v] - m->x[v]).norm());
       m->x = next;
+      m->current_energy = e1;
       m->at = moved;
       for (size_t v = 0; v < moved.size(); ++v) m->coords[v] = moved[v].coord;
       return out;
@@ -323,6 +379,7 @@ MeshRelaxReport MeshRelaxer::run(const std::function<void(const MeshRelaxStep&)>
   report.r_course = m->r_course;
   report.r_wale = m->r_wale;
   report.initial_energy = energy();
+  report.turned_over_before = turned_over();
   for (int s = 0; s < m->options.max_steps; ++s) {
     const MeshRelaxStep st = step();
     report.steps.push_back(st);
@@ -334,6 +391,7 @@ MeshRelaxReport MeshRelaxer::run(const std::function<void(const MeshRelaxStep&)>
     if (m->options.interrupt && m->options.interrupt->load()) break;
   }
   if (m->options.max_steps == 0) report.converged = false;
+  report.turned_over_after = turned_over();
   return report;
 }
 
@@ -343,6 +401,16 @@ const std::vector<char>& MeshRelaxer::on_border() const { return m->border; }
 const SubdivSurface& MeshRelaxer::surface() const { return m->surface; }
 double MeshRelaxer::r_course() const { return m->r_course; }
 double MeshRelaxer::r_wale() const { return m->r_wale; }
+
+int MeshRelaxer::turned_over() const {
+  int n = 0;
+  for (const auto& f : m->stitch.faces) {
+    Vec3 normal = Vec3::Zero();
+    for (int k = 0; k < f.size(); ++k) normal += m->x[f.vertex(k)].cross(m->x[f.vertex(k + 1)]);
+    n += normal.dot(m->surface.evaluate(m->coords[f.vertex(0)]).normal()) <= 0;
+  }
+  return n;
+}
 
 mesh::StitchMesh MeshRelaxer::relaxed() const {
   mesh::StitchMesh out = m->stitch;

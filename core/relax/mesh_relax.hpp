@@ -16,13 +16,13 @@ struct MeshRelaxOptions {
   double alpha = 0.9;        ///< rest-size scale: N r_wale r_course = α A (0 < α ≤ 1)
   double aspect = 1.0;       ///< a = r_wale / r_course
   double k_stretch = 2.0, k_shear = 0.2, k_wale = 2.0;
-  double k_fold = 2.0;       ///< keeps stitches from turning over (0 = off); not in Yuksel 2012
+  double k_fold = 10.0;      ///< keeps stitches from turning over (0 = off); not in Yuksel 2012
   double fold_area = 0.25;   ///< the guard acts below this fraction of the rest corner area
-  double time_step = 0;      ///< h of backward Euler [mm]; 0 = 10 r_course (large: close to Newton steps)
+  double time_step = 0;      ///< h of backward Euler [mm]; 0 = 1000 r_course (so large that steps are Newton steps)
   int max_steps = 200;
   double tolerance = 0.01;   ///< stop when no vertex moves more than tolerance × r_course in a step
-  double max_move = 0.5;     ///< no vertex moves more than this × r_course in one step
-  int cg_iterations = 60;
+  double max_move = 2;       ///< no vertex moves more than this × r_course in one step (a trust region)
+  int cg_iterations = 80;    ///< an inexact Newton step: more rarely pays
   double cg_tolerance = 1e-4;  ///< relative residual of the modified CG
   int samples_per_edge = 8;    ///< fine triangles: samples along each ptex face edge
   /// When set and it turns true, run() returns after the step in progress (the app's stop button).
@@ -43,6 +43,7 @@ struct MeshRelaxReport {
   bool converged = false;  ///< not converging is a result, not an error
   double r_course = 0, r_wale = 0;
   double initial_energy = 0;
+  int turned_over_before = 0, turned_over_after = 0;  ///< see MeshRelaxer::turned_over()
 };
 
 /// Relaxes a stitch mesh on the Catmull-Clark limit surface of its input mesh (Yuksel 2012 §6.1): stretch
@@ -68,6 +69,8 @@ public:
   const SubdivSurface& surface() const;
   double r_course() const;
   double r_wale() const;
+  /// Stitches turned over: faces whose normal, by the order of their corners, points against the surface's.
+  int turned_over() const;
   /// The stitch mesh with the relaxed positions.
   mesh::StitchMesh relaxed() const;
 
