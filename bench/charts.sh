@@ -125,10 +125,36 @@ plot '$tmp/map.dat' using 1:2:(0.5):(0.5):3 with boxxy lc rgb variable notitle, 
 EOF
 }
 
+periodic() {
+  local data=$out/periodic-vs-tiled.csv
+  build/bin/bench_periodic --tiles 5 patterns/*.knit | tee "$data"
+  gnuplot <<EOF
+set terminal pngcairo size 1300,1000 font ',12'
+set output '$out/periodic-vs-tiled.png'
+set datafile separator ','
+set multiplot layout 2,1 title "Every bundled knit: its periodic patch against the centre repeat of a relaxed 5 x 5 tiling (FIRE, 2 threads)"
+set style data histograms
+set style histogram clustered gap 1
+set style fill solid 0.8 border -1
+set xtics rotate by -40 scale 0 font ',10'
+set grid ytics
+set logscale y
+set ylabel 'seconds to converge'
+set key top left
+plot '$data' using 5:xtic(1) title 'periodic patch' lc rgb '0x1e88e5', '' using 8 title '5 x 5 tiling' lc rgb '0xfb8c00'
+unset logscale y
+set ylabel 'difference [yarn radii]'
+set yrange [0:*]
+plot '$data' using 10:xtic(1) title 'RMS' lc rgb '0x43a047', '' using 11 title 'largest' lc rgb '0x8e24aa'
+unset multiplot
+EOF
+}
+
 case $what in
   speed) speed ;;
   stability) stability ;;
-  all) speed; stability ;;
-  *) echo "usage: bench/charts.sh [speed|stability|all]" >&2; exit 2 ;;
+  periodic) periodic ;;
+  all) periodic; stability; speed ;;
+  *) echo "usage: bench/charts.sh [speed|stability|periodic|all]" >&2; exit 2 ;;
 esac
 echo "wrote $out/"

@@ -187,4 +187,50 @@ PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing,
   return patch;
 }
 
+PatchDifference centre_repeat_difference(const PeriodicPatch& patch, const Eigen::Matrix3Xd& patch_relaxed, const mesh::YarnCurves& tiled,
+                                         const Eigen::Matrix3Xd& tiled_relaxed, int n) {
+  const int centre = (patch.tiles - 1) / 2;
+  const Eigen::Vector3d shift = (centre - (n - 1) / 2) * (patch.period_x + patch.period_y);
+  // The tiling's emitted points by position, on a grid a tenth of the yarn radius fine.
+  const double cell = 0.1 * patch.yarn.radius;
+  const auto key = [&](const Eigen::Vector3d& p) {
+    return std::tuple(std::lround(p.x() / cell), std::lround(p.y() / cell), std::lround(p.z() / cell));
+  };
+  std::map<std::tuple<long, long, long>, std::vector<int>> emitted;
+  for (int q = 0; q < static_cast<int>(tiled.points.size()); ++q) emitted[key(tiled.points[q] + shift)].push_back(q);
+  const auto match = [&](const Eigen::Vector3d& p) {
+    const auto [x, y, z] = key(p);
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dz = -1; dz <= 1; ++dz) {
+          const auto it = emitted.find({x + dx, y + dy, z + dz});
+          if (it == emitted.end()) continue;
+          for (int q : it->second)
+            if ((tiled.points[q] + shift - p).norm() < 1e-6) return q;
+        }
+    return -1;
+  };
+  std::vector<std::pair<int, int>> pairs;
+  for (int p = 0; p < static_cast<int>(patch.ring.size()); ++p) {
+    if (patch.ring[p] != 0) continue;
+    const int q = match(patch.yarn.points[p]);
+    if (q < 0) throw Error("", "periodic patch against a tiling", "real point " + std::to_string(p) + " has no point of the tiling at its place");
+    pairs.emplace_back(p, q);
+  }
+  PatchDifference out;
+  out.points = static_cast<int>(pairs.size());
+  if (pairs.empty()) return out;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& [p, q] : pairs) mean += patch_relaxed.col(p) - tiled_relaxed.col(q);
+  mean /= static_cast<double>(pairs.size());
+  double sum = 0;
+  for (const auto& [p, q] : pairs) {
+    const double d = (patch_relaxed.col(p) - tiled_relaxed.col(q) - mean).norm();
+    sum += d * d;
+    out.largest = std::max(out.largest, d);
+  }
+  out.rms = std::sqrt(sum / static_cast<double>(pairs.size()));
+  return out;
+}
+
 }  // namespace skein::relax

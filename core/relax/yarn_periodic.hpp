@@ -51,4 +51,16 @@ void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double 
 /// integrator nor the convergence test (Leaf eq. 5) may count them.
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
 
+/// The periodic patch's relaxed real points against the matching points of the relaxed centre repeat of an
+/// n × n tiling of the same pattern (its stitch mesh from mesh::pattern_stitch_mesh(pattern, n, n), emitted
+/// with the same library and radius), the common translation removed. Points are matched where they were
+/// emitted: the tiling's repeat ((n − 1)/2, (n − 1)/2) sits where the patch's centre repeat does, less an
+/// offset. Throws skein::Error when a real point has no match (the two were not emitted alike).
+struct PatchDifference {
+  double rms = 0, largest = 0;  ///< [mm]
+  int points = 0;               ///< real points compared
+};
+PatchDifference centre_repeat_difference(const PeriodicPatch& patch, const Eigen::Matrix3Xd& patch_relaxed, const mesh::YarnCurves& tiled,
+                                         const Eigen::Matrix3Xd& tiled_relaxed, int n);
+
 }  // namespace skein::relax

@@ -311,25 +311,9 @@ double periodic_against_tiled(const std::string& text) {
   const auto tiled = relaxed(tiled_system, options);
   EXPECT_TRUE(tiled.report.converged) << tiled.report.stopped_by;
 
-  // Match the emitted points: the tiling's repeat (2, 2) sits where the patch's centre repeat does, less an offset.
-  const int centre = (patch.tiles - 1) / 2;
-  const Eigen::Vector3d shift = (centre - 2) * (patch.period_x + patch.period_y);
-  std::vector<std::pair<int, int>> pairs;
-  for (int p = 0; p < periodic_system.num_points(); ++p) {
-    if (patch.ring[p] != 0) continue;
-    for (int q = 0; q < tiled_system.num_points(); ++q)
-      if ((tiled_system.points.col(q) + shift - periodic_system.points.col(p)).norm() < 1e-6) {
-        pairs.emplace_back(p, q);
-        break;
-      }
-  }
-  EXPECT_EQ(static_cast<long>(pairs.size()), std::count(patch.ring.begin(), patch.ring.end(), 0));
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& [p, q] : pairs) mean += periodic.state.points.col(p) - tiled.state.points.col(q);
-  mean /= static_cast<double>(pairs.size());
-  double sum = 0;
-  for (const auto& [p, q] : pairs) sum += (periodic.state.points.col(p) - tiled.state.points.col(q) - mean).squaredNorm();
-  return std::sqrt(sum / static_cast<double>(pairs.size())) / r;
+  const auto difference = centre_repeat_difference(patch, periodic.state.points, yarn, tiled.state.points, 5);
+  EXPECT_EQ(difference.points, std::count(patch.ring.begin(), patch.ring.end(), 0));
+  return difference.rms / r;
 }
 }  // namespace
 
