@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 
 
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
       const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, n, n), library, emit);
       const auto tiled = relax_timed(relax::make_yarn_system(yarn), options, {});
       const auto d = relax::centre_repeat_difference(patch, periodic.state.points, yarn, tiled.state.points, n);
-      std::printf("%s,%d,%zu,%ld,%.3f,%zu,%ld,%.3f,%.2f,%.4f,%.4f,%s\n", pattern.name.c_str(), d.points, patch.yarn.points.size(), periodic.report.steps,
+      std::printf("%s,%d,%zu,%ld,%.3f,%zu,%ld,%.3f,%.2f,%.4f,%.4f,%s\n", std::filesystem::path(argv[a]).stem().c_str(), d.points, patch.yarn.points.size(), periodic.report.steps,
                   periodic.seconds, yarn.points.size(), tiled.report.steps, tiled.seconds, tiled.seconds / periodic.seconds, d.rms / r, d.largest / r,
                   periodic.report.converged && tiled.report.converged ? "both" : periodic.report.converged ? "periodic only" : "not periodic");
       std::fflush(stdout);
