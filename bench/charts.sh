@@ -2,10 +2,11 @@
 # The evidence charts of docs/evidence.md (issue 9), drawn with gnuplot from runs of build/bin/skein:
 #   speed      residual against wall time per integrator, with and without mesh relaxation first, on the
 #              mitten (glove class) and the sweater; every step audited, the auditor's count in the legend
-#   stability  integrator x step size x contact stiffness on a swatch: converged, not converged in the
-#              time cap, blew up, or pull-through found by the auditor (with the guard and without it)
+#   stability  integrator x step size x contact stiffness on a swatch and on two squeezed linked rings:
+#              converged, not converged in the time cap, blew up, or pull-through found by the auditor
+#              (with the guard and without it)
 #   periodic   every bundled knit's periodic patch against the centre of a relaxed 5 x 5 tiling: cost and RMS
-# Usage: bench/charts.sh [speed|stability|periodic|all]   (env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per
+# Usage: bench/charts.sh [speed|stability|periodic|all|plots]   (plots: redraw all from the CSVs; env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per
 # speed run, 300 and 180)
 # Writes docs/images/charts/*.png and the measured data beside them as CSV.
 set -euo pipefail
@@ -34,95 +35,136 @@ speed() {
     [[ $model == sweater ]] && cap=${SWEATER_SECONDS:-180}
     "$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model-tessellated.skein"
     "$skein" -q relax-mesh "$tmp/$model-tessellated.skein" -o "$tmp/$model-mesh-relaxed.skein"
-    local summary=$out/speed-$model.csv plot=""
-    echo "method,start,stopped_by,steps,wall_seconds,residual,pull_through_events" > "$summary"
+    local summary=$out/speed-$model.csv
+    echo "method,start,stopped_by,steps,wall_seconds,residual,pull_through_events,cap_seconds" > "$summary"
     for method in fire euler; do
       for start in tessellated mesh-relaxed; do
-        local log=$out/speed-$model-$method-$start.csv
         local result
-        result=$(relax "$tmp/$model-$start.skein" "$log" --method "$method" --max-seconds "$cap" --max-steps 1000000)
-        echo "$method,$start,$result" >> "$summary"
-        local events=${result##*,}
-        plot+="'$log' using 10:3 with lines lw 2 title '$method from the $start mesh ($events pull-through)', "
+        result=$(relax "$tmp/$model-$start.skein" "$out/speed-$model-$method-$start.csv" --method "$method" --max-seconds "$cap" --max-steps 1000000)
+        echo "$method,$start,$result,$cap" >> "$summary"
       done
     done
+  done
+  speed_plots
+}
+
+# Residual and energy against time from the speed runs' logs (their CSV summaries name the runs).
+speed_plots() {
+  for model in mitten sweater; do
+    local summary=$out/speed-$model.csv residual="" energy="" caption=""
+    while IFS=, read -r method start _ _ _ _ events cap; do
+      local log=$out/speed-$model-$method-$start.csv title="$method from the $start mesh ($events pull-through)"
+      caption=$cap
+      residual+="'$log' using 10:3 with lines lw 2 title '$title', "
+      energy+="'$log' using 10:2 with lines lw 2 title '$title', "
+    done < <(tail -n +2 "$summary")
     gnuplot <<EOF
-set terminal pngcairo size 1200,700 font ',13'
+set terminal pngcairo size 1200,1100 font ',13'
 set output '$out/speed-$model.png'
 set datafile separator ','
-set key outside below
+set multiplot layout 2,1 title "$model: yarn relaxation against wall time (cap ${caption} s; 2 threads, every step audited)"
 set logscale y
 set format y '10^{%L}'
-set xlabel 'wall time [s] (2 threads, every step audited)'
-set ylabel 'residual |∇E| / |∇E_0|'
-set title "$model: yarn relaxation, residual against time (cap ${cap} s)"
 set grid
-plot ${plot%, }
+set key top right font ',11'
+set ylabel 'residual |∇E| / |∇E_0|'
+plot ${residual%, }
+set xlabel 'wall time [s]'
+set ylabel 'energy'
+plot ${energy%, }
+unset multiplot
 EOF
   done
 }
 
 stability() {
+  # Two cases: a swatch of knitting (400 stitches at 10 x 8 mm), and two linked rings given 30 % of their
+  # yarn's length, which pull tight against each other.
   "$skein" -q stitch models/swatch.obj --auto-label --stitch-size 10 --stitch-height 8 -o "$tmp/swatch.skein"
+  python3 - "$tmp/rings.bcc" <<'EOF'
+import math, struct, sys
+def ring(c, u, v):
+    return [[c[i] + 3 * (math.cos(2 * math.pi * k / 24) * u[i] + math.sin(2 * math.pi * k / 24) * v[i]) for i in range(3)] for k in range(24)]
+rings = [ring([0, 0, 0], [1, 0, 0], [0, 1, 0]), ring([3, 0, 0], [1, 0, 0], [0, 0, 1])]
+out = b'BCC' + bytes([0x44]) + b'C0' + bytes([3, 1]) + struct.pack('<QQ', 2, 48) + b'skein yarn, radius 0.5 mm'.ljust(40, b'\0')
+for r in rings:
+    out += struct.pack('<i', -len(r)) + b''.join(struct.pack('<fff', *p) for p in r)
+open(sys.argv[1], 'wb').write(out)
+EOF
   local data=$out/stability.csv
-  echo "method,guard,step_factor,contact_factor,stopped_by,steps,wall_seconds,residual,pull_through_events,outcome" > "$data"
-  for method in fire euler; do
-    local base=0.02
-    [[ $method == euler ]] && base=0.002
-    for guard in on off; do
-      local flag=""
-      [[ $guard == off ]] && flag=--no-guard
-      for step in 0.5 1 2 4 8; do
-        for contact in 0.25 1 4; do
-          local h k result outcome
-          h=$(python3 -c "print($base * $step)")
-          k=$(python3 -c "print(50 * $contact)")
-          result=$(relax "$tmp/swatch.skein" "$tmp/log.csv" --method "$method" $flag --time-step "$h" --k-contact "$k" --max-seconds 20 --max-steps 1000000)
-          IFS=, read -r stopped _ _ _ events <<< "$result"
-          if [[ $events != 0 ]]; then outcome=pull-through
-          elif [[ $stopped == diverged ]]; then outcome=blew-up
-          elif [[ $stopped == converged ]]; then outcome=converged
-          else outcome=not-converged; fi
-          echo "$method,$guard,$step,$contact,$result,$outcome" | tee -a "$data"
+  echo "case,method,guard,step_factor,contact_factor,stopped_by,steps,wall_seconds,residual,pull_through_events,outcome" > "$data"
+  for case in swatch rings; do
+    local input=$tmp/swatch.skein contacts="0.25 4" extra=()
+    [[ $case == rings ]] && input=$tmp/rings.bcc contacts=1 extra=(--take-up 0.3)
+    for method in fire euler; do
+      local base=0.02
+      [[ $method == euler ]] && base=0.002
+      # The guard with the default movement limit (0.25 r per step), the guard with 1 r, and no guard with 1 r.
+      for guard in "on" "on, moves 1 r" "off, moves 1 r"; do
+        local flags=("${extra[@]}")
+        [[ $guard == *"1 r" ]] && flags+=(--max-move 1 --contact-margin 2)
+        [[ $guard == off* ]] && flags+=(--no-guard)
+        for step in 1 4 16 64 256; do
+          for contact in $contacts; do
+            local h k result outcome
+            h=$(python3 -c "print($base * $step)")
+            k=$(python3 -c "print(50 * $contact)")
+            result=$(relax "$input" "$tmp/log.csv" --method "$method" "${flags[@]}" --time-step "$h" --k-contact "$k" --max-seconds 10 --max-steps 1000000)
+            IFS=, read -r stopped _ _ _ events <<< "$result"
+            if [[ $events != 0 ]]; then outcome=pull-through
+            elif [[ $stopped == diverged ]]; then outcome=blew-up
+            elif [[ $stopped == converged ]]; then outcome=converged
+            else outcome=not-converged; fi
+            echo "$case,$method,\"$guard\",$step,$contact,$result,$outcome" | tee -a "$data"
+          done
         done
       done
     done
   done
-  # Rows: method and guard with the contact stiffness inside; columns: the step size.
+  stability_plot
+}
+
+# The map from stability.csv.
+stability_plot() {
+  local data=$out/stability.csv
+  # Rows: case, method and guard with the contact stiffness inside; columns: the step size.
   python3 - "$data" > "$tmp/map.dat" <<'EOF'
 import csv, sys
 colour = {'converged': '0x4caf50', 'not-converged': '0xffc107', 'blew-up': '0x9e9e9e', 'pull-through': '0xe53935'}
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = []
 for r in rows:
-    key = (r['method'], r['guard'], r['contact_factor'])
+    key = (r['case'], r['method'], r['guard'], r['contact_factor'])
     if key not in keys: keys.append(key)
 steps = sorted({float(r['step_factor']) for r in rows})
 for r in rows:
-    y = keys.index((r['method'], r['guard'], r['contact_factor']))
+    y = keys.index((r['case'], r['method'], r['guard'], r['contact_factor']))
     x = steps.index(float(r['step_factor']))
     label = r['steps'] if r['outcome'] != 'pull-through' else r['pull_through_events'] + ' pt'
     print(x, y, colour[r['outcome']], '"%s"' % label)
-print('# ytics', ', '.join('"%s, guard %s, k_c x%s" %d' % (m, g, c, i) for i, (m, g, c) in enumerate(keys)))
+print('# ytics', ', '.join('"%s: %s, guard %s, k_c x%s" %d' % (c, m, g, k, i) for i, (c, m, g, k) in enumerate(keys)))
 print('# xtics', ', '.join('"%g" %d' % (s, i) for i, s in enumerate(steps)))
+print('# rows', len(keys) - 0.5)
 EOF
-  local ytics xtics
+  local ytics xtics rows
   ytics=$(grep '^# ytics' "$tmp/map.dat" | cut -c9-)
   xtics=$(grep '^# xtics' "$tmp/map.dat" | cut -c9-)
+  rows=$(grep '^# rows' "$tmp/map.dat" | cut -c8-)
   gnuplot <<EOF
-set terminal pngcairo size 1100,1000 font ',12'
+set terminal pngcairo size 1200,1300 font ',12'
 set output '$out/stability.png'
-set title "Stability map: swatch yarn (20 s cap); cell text: steps taken, or pull-through events (pt)"
+set title "Stability map, 10 s per run. swatch: 400 stitches; rings: two linked rings\nwith 30 % of their length. Cells: steps taken, or pull-through events (pt)"
 set xlabel 'time step x the default (Euler 0.002 s, FIRE 0.02 s)'
 set ytics ($ytics)
 set xtics ($xtics)
 set xrange [-0.5:4.5]
-set yrange [-0.5:11.5] reverse
-set key outside bottom center horizontal
+set yrange [-0.5:$rows] reverse
+set key at screen 0.5, 0.025 center center horizontal maxrows 1 samplen 2
+set bmargin 6
 set style fill solid 1.0 border lc rgb 'white'
 plot '$tmp/map.dat' using 1:2:(0.5):(0.5):3 with boxxy lc rgb variable notitle, \
      '' using 1:2:4 with labels font ',11' notitle, \
-     NaN with boxes lc rgb '0x4caf50' title 'converged', NaN with boxes lc rgb '0xffc107' title 'not converged in 20 s', \
+     NaN with boxes lc rgb '0x4caf50' title 'converged', NaN with boxes lc rgb '0xffc107' title 'not converged in 10 s', \
      NaN with boxes lc rgb '0x9e9e9e' title 'blew up', NaN with boxes lc rgb '0xe53935' title 'pull-through'
 EOF
 }
@@ -130,6 +172,11 @@ EOF
 periodic() {
   local data=$out/periodic-vs-tiled.csv
   build/bin/bench_periodic --tiles 5 patterns/*.knit | tee "$data"
+  periodic_plot
+}
+
+periodic_plot() {
+  local data=$out/periodic-vs-tiled.csv
   gnuplot <<EOF
 set terminal pngcairo size 1300,1000 font ',12'
 set output '$out/periodic-vs-tiled.png'
@@ -154,9 +201,10 @@ EOF
 
 case $what in
   speed) speed ;;
+  plots) speed_plots; stability_plot; periodic_plot ;;
   stability) stability ;;
   periodic) periodic ;;
   all) periodic; stability; speed ;;
-  *) echo "usage: bench/charts.sh [speed|stability|periodic|all]" >&2; exit 2 ;;
+  *) echo "usage: bench/charts.sh [speed|stability|periodic|all|plots]" >&2; exit 2 ;;
 esac
 echo "wrote $out/"

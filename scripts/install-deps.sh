@@ -7,6 +7,7 @@ packages=(
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libtbb-dev libpng-dev
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev libomp-dev
+  gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

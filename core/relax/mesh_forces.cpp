@@ -47,28 +47,35 @@ ShearJacobian shear_jacobian(const Vec3& xi, const Vec3& xj, const Vec3& xk, dou
   return out;
 }
 
+namespace {
+/// The strut's lengths: w = x_i − x_k (d, u its length and direction) and its rest r.
+struct StrutGeometry {
+  Vec3 w, u, eij, ekj;
+  double d, r;
+  bool follows;  ///< r = |x_i − x_j| + |x_k − x_j|, else the constant r_wale
+  StrutGeometry(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale)
+      : w(xi - xk), eij(xi - xj), ekj(xk - xj), d(std::max(w.norm(), 1e-12)) {
+    u = w / d;
+    const double span = eij.norm() + ekj.norm();
+    follows = span > rest_wale;
+    r = follows ? span : rest_wale;
+  }
+};
+}  // namespace
+
 Strut wale_strut(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale, double k) {
-  const Vec3 w = xi - xk;
-  const double d = std::max(w.norm(), 1e-12);
-  const Vec3 u = w / d;
-  const Vec3 eij = xi - xj, ekj = xk - xj;
-  const double span = eij.norm() + ekj.norm();
-  const bool follows = span > rest_wale;  // r = |x_i − x_j| + |x_k − x_j|, else the constant r_wale
-  const double r = follows ? span : rest_wale;
+  const StrutGeometry g(xi, xj, xk, rest_wale);
   Strut out;
-  out.energy = k * (d - r) * (d - r) / (2 * r);
-  out.force_i = -k * (d / r - 1) * u;  // = −k w (1/r − 1/d)
+  out.energy = k * (g.d - g.r) * (g.d - g.r) / (2 * g.r);
+  out.force_i = -k * (g.d / g.r - 1) * g.u;  // = −k w (1/r − 1/d)
   return out;
 }
 
 StrutJacobian wale_strut_jacobian(const Vec3& xi, const Vec3& xj, const Vec3& xk, double rest_wale, double k) {
-  const Vec3 w = xi - xk;
-  const double d = std::max(w.norm(), 1e-12);
-  const Vec3 u = w / d;
-  const Vec3 eij = xi - xj, ekj = xk - xj;
-  const double span = eij.norm() + ekj.norm();
-  const bool follows = span > rest_wale;
-  const double r = follows ? span : rest_wale;
+  const StrutGeometry g(xi, xj, xk, rest_wale);
+  const Vec3 &w = g.w, &u = g.u, &eij = g.eij, &ekj = g.ekj;
+  const double d = g.d, r = g.r;
+  const bool follows = g.follows;
   StrutJacobian out;
   // f_i = −k w (1/r − 1/d): d f_i/d x_b = −k [dw/dx_b (1/r − 1/d) + w (−dr/dx_b / r² + dd/dx_b / d²)]
   const Vec3 ui = eij.norm() > 0 ? Vec3(eij.normalized()) : Vec3::Zero(), uk = ekj.norm() > 0 ? Vec3(ekj.normalized()) : Vec3::Zero();
