@@ -48,9 +48,10 @@ struct MeshRelaxReport {
 
 /// Relaxes a stitch mesh on the Catmull-Clark limit surface of its input mesh (Yuksel 2012 §6.1): stretch
 /// springs (eq. 2) on wale and course edges and sub-quad diagonals, shear on every sub-quad corner (eq. 3),
-/// wale struts (eq. 4); backward Euler (eq. 1) solved by the modified conjugate gradients of Baraff & Witkin
-/// 1998 with the normal direction filtered out (border vertices may only slide along the border); vertices
-/// stay on the limit surface. A step that would raise the energy is retried with half the time step.
+/// wale struts (eq. 4); backward Euler (eq. 1) with a time step so large that steps are Newton steps, solved
+/// by conjugate gradients in each vertex's free directions (Baraff & Witkin 1998's constraint filter: the
+/// surface's tangents; along the border for border vertices); vertices stay on the limit surface. A step
+/// that would raise the energy is retried with half the time step.
 class MeshRelaxer {
 public:
   /// @param control_points, control_faces  the input mesh (plain values)
