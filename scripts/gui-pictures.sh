@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 out=docs/images/gui
 shots=$(mktemp -d)
 trap 'rm -rf "$shots"' EXIT
-SKEIN_GUI_SHOTS="$shots" SKEIN_GUI_TOUR_SECONDS=1500 QTEST_FUNCTION_TIMEOUT=1800000 \
+SKEIN_GUI_SHOTS="$shots" SKEIN_GUI_TOUR_SECONDS=${SKEIN_GUI_TOUR_SECONDS:-1500} QTEST_FUNCTION_TIMEOUT=1800000 \
   xvfb-run -a -s "-screen 0 1600x1200x24" build/bin/test_gui tour_of_a_beanie
 mkdir -p "$out"
 rm -f "$out"/gui-*.png
