@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The evidence charts of docs/evidence.md (issue 9), drawn with gnuplot from runs of build/bin/skein:
-#   speed      residual against wall time per integrator, with and without mesh relaxation first, on the
-#              mitten (glove class) and the sweater; every step audited, the auditor's count in the legend
+#   speed      residual and energy against wall time per integrator, with and without mesh relaxation
+#              first, on the mitten (glove class) and the sweater; every step audited, the auditor's count
+#              in the legend
 #   stability  integrator x step size x contact stiffness on a swatch and on two squeezed linked rings:
 #              converged, not converged in the time cap, blew up, or pull-through found by the auditor
 #              (with the guard and without it)
 #   periodic   every bundled knit's periodic patch against the centre of a relaxed 5 x 5 tiling: cost and RMS
-# Usage: bench/charts.sh [speed|stability|periodic|all|plots]   (plots: redraw all from the CSVs; env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per
-# speed run, 300 and 180)
+# Usage: bench/charts.sh [speed|stability|periodic|all|plots]   (plots: redraw all from the CSVs)
+# Env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per speed run (300 and 180).
 # Writes docs/images/charts/*.png and the measured data beside them as CSV.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,6 +24,7 @@ command -v gnuplot > /dev/null || { echo "bench/charts.sh needs gnuplot (apt-get
 relax() {  # input log args...
   local input=$1 log=$2
   shift 2
+  rm -f "$tmp/r.json"  # a run that fails before its report must not be read as the one before it
   "$skein" -q relax-yarn "$input" -o "$tmp/out.bcc" --report "$tmp/r.json" --log "$log" "$@" || true
   python3 -c "
 import json; r = json.load(open('$tmp/r.json'))
