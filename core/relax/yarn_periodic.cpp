@@ -191,24 +191,12 @@ PatchDifference centre_repeat_difference(const PeriodicPatch& patch, const Eigen
                                          const Eigen::Matrix3Xd& tiled_relaxed, int n) {
   const int centre = (patch.tiles - 1) / 2;
   const Eigen::Vector3d shift = (centre - (n - 1) / 2) * (patch.period_x + patch.period_y);
-  // The tiling's emitted points by position, on a grid a tenth of the yarn radius fine.
-  const double cell = 0.1 * patch.yarn.radius;
-  const auto key = [&](const Eigen::Vector3d& p) {
-    return std::tuple(std::lround(p.x() / cell), std::lround(p.y() / cell), std::lround(p.z() / cell));
-  };
-  std::map<std::tuple<long, long, long>, std::vector<int>> emitted;
-  for (int q = 0; q < static_cast<int>(tiled.points.size()); ++q) emitted[key(tiled.points[q] + shift)].push_back(q);
+  // The tiling's emitted points by position, as the patch matches its virtual points.
+  std::map<Key, int> emitted;
+  for (int q = 0; q < static_cast<int>(tiled.points.size()); ++q) emitted.emplace(key_of(tiled.points[q] + shift), q);
   const auto match = [&](const Eigen::Vector3d& p) {
-    const auto [x, y, z] = key(p);
-    for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dz = -1; dz <= 1; ++dz) {
-          const auto it = emitted.find({x + dx, y + dy, z + dz});
-          if (it == emitted.end()) continue;
-          for (int q : it->second)
-            if ((tiled.points[q] + shift - p).norm() < 1e-6) return q;
-        }
-    return -1;
+    const auto it = emitted.find(key_of(p));
+    return it == emitted.end() ? -1 : it->second;
   };
   std::vector<std::pair<int, int>> pairs;
   for (int p = 0; p < static_cast<int>(patch.ring.size()); ++p) {
