@@ -127,7 +127,12 @@ std::vector<YarnPiece> heads(int nb, const std::vector<int>& order, const std::v
     p.points.push_back(at(kSide, run, sl));
     p.points.push_back(at(kSide, kSinker, sl));
     // Where a head turns from its side to its top, its depth is the mean of the two, so layers stay 2 apart.
-    const auto top_depth = [&](int j) { return -leg_at_head(loops[j].action) * (1 + 2.0 * q); };
+    // Over knit and purl legs layer 0 lies nearest the legs; in front of a yarn-over's legs the layers keep
+    // the order they have at the sides (layer 0 in front), so that heads passing from a yarn-over to a knit
+    // loop (lace) never cross each other.
+    const auto top_depth = [&](int j) {
+      return loops[j].action == Action::YarnOver ? 1 + 2.0 * (nb - 1 - q) : -leg_at_head(loops[j].action) * (1 + 2.0 * q);
+    };
     p.points.push_back(at(kSide + 0.03, 0.5, 0.5 * (sl + top_depth(0))));
     for (int j = 0; j < nt; ++j) {
       p.points.push_back(at(leg_u(j, nt, false), kHead, top_depth(j)));
@@ -246,6 +251,14 @@ int main(int argc, char** argv) {
                                   " loops below, stacked " + order + " (loop " + order.substr(0, 1) + " nearest the new loop) " + table1,
                               static_cast<int>(order.size()), {{action_of(c)}}, stack));
     }
+  // Leaf 2018 Table 2's lace tiles: a yarn-over beside a decrease, as many loops made as taken.
+  const std::string leaf = " (Leaf 2018 Table 2)";
+  models.push_back(stitch("ys", "lace: a yarn-over, then a knit loop through both loops below, stacked 21 (ssk)" + leaf, 2,
+                          {{Action::YarnOver}, {Action::Knit}}, {1, 0}));
+  models.push_back(stitch("2u", "lace: a knit loop through both loops below, stacked 12 (k2tog), then a yarn-over" + leaf, 2,
+                          {{Action::Knit}, {Action::YarnOver}}, {0, 1}));
+  models.push_back(stitch("y3y", "lace: a yarn-over, a knit loop through the three loops below, stacked 213 (sk2p), a yarn-over" + leaf, 3,
+                          {{Action::YarnOver}, {Action::Knit}, {Action::YarnOver}}, {1, 0, 2}));
   for (int a = 1; a <= 3; ++a)
     for (int b = 1; b <= 3; ++b) models.push_back(cable(a, b));
   models.push_back(bind_off());

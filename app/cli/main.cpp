@@ -531,10 +531,14 @@ int main(int argc, char** argv) {
         std::vector<int> faces;
         for (int f = 0; f < static_cast<int>(project.stitch->faces.size()); ++f)
           if (project.stitch->faces[f].row >= a && project.stitch->faces[f].row <= b) faces.push_back(f);
-        *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face);
+        mesh::TileReport tiled;
+        *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face, &tiled);
         mesh::write_project(project, pat_out);
         if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, render::ColorBy::StitchType);
-        spdlog::info("tiled {} over {} faces from face {}; wrote {}", pattern.name, faces.size(), pat_face, pat_out);
+        if (tiled.repeats > 0)
+          spdlog::info("tiled {} from face {}: {} whole {} x {} repeats re-meshed ({} of the {} chosen stitches); wrote {}", pattern.name, pat_face,
+                       tiled.repeats, pattern.width(), pattern.height(), tiled.stitches, faces.size(), pat_out);
+        else spdlog::info("tiled {} over {} of {} chosen stitches from face {}; wrote {}", pattern.name, tiled.stitches, faces.size(), pat_face, pat_out);
         return 0;
       }
       const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;

@@ -214,10 +214,12 @@ void Document::fill(const std::vector<int>& faces, const mesh::Fill& pattern, co
   apply(tr("Fill %1").arg(name), with_stitch(mesh::fill(*m_state.stitch, faces, pattern)));
 }
 
-void Document::tile_pattern(const std::vector<int>& faces, const mesh::Pattern& pattern, int origin) {
+mesh::TileReport Document::tile_pattern(const std::vector<int>& faces, const mesh::Pattern& pattern, int origin) {
   require_stitch();
   if (faces.empty()) throw Error("select the stitches to tile the pattern over first (the Select tool)");
-  apply(tr("Tile pattern %1").arg(QString::fromStdString(pattern.name)), with_stitch(mesh::tile_pattern(*m_state.stitch, faces, pattern, origin)));
+  mesh::TileReport report;
+  apply(tr("Tile pattern %1").arg(QString::fromStdString(pattern.name)), with_stitch(mesh::tile_pattern(*m_state.stitch, faces, pattern, origin, &report)));
+  return report;
 }
 
 void Document::mark_cable(const std::vector<int>& path, int shift, int order) {

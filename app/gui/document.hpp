@@ -68,7 +68,8 @@ public:
   // Stitch-mesh edits (§5.3)
   void paint(const std::vector<int>& faces, const std::string& type, const QString& text);
   void fill(const std::vector<int>& faces, const mesh::Fill& fill, const QString& name);
-  void tile_pattern(const std::vector<int>& faces, const mesh::Pattern& pattern, int origin);
+  /// Face ids change where the pattern re-meshes (report.repeats > 0).
+  mesh::TileReport tile_pattern(const std::vector<int>& faces, const mesh::Pattern& pattern, int origin);
   void mark_cable(const std::vector<int>& path, int shift, int order);
   void unmark_cable(const std::vector<int>& path);
   void split_course_edge(int u, int v);

@@ -452,8 +452,14 @@ bool MainWindow::tile_pattern_file(const QString& path) {
     const auto faces = selection();
     if (!m_doc.state().stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
     if (faces.empty()) throw Error("select the stitches to tile the pattern over first (the Select tool)");
-    m_doc.tile_pattern(faces, pattern, mesh::lowest_left(*m_doc.state().stitch, faces));
-    statusBar()->showMessage(tr("Tiled %1 over %2 stitches").arg(QString::fromStdString(pattern.name)).arg(faces.size()));
+    const auto tiled = m_doc.tile_pattern(faces, pattern, mesh::lowest_left(*m_doc.state().stitch, faces));
+    if (tiled.repeats > 0) {
+      set_selection({});  // the stitches were re-meshed: their ids are new
+      statusBar()->showMessage(tr("Tiled %1: %2 whole repeats re-meshed (%3 of the %4 selected stitches)")
+                                   .arg(QString::fromStdString(pattern.name)).arg(tiled.repeats).arg(tiled.stitches).arg(faces.size()));
+    } else {
+      statusBar()->showMessage(tr("Tiled %1 over %2 of the %3 selected stitches").arg(QString::fromStdString(pattern.name)).arg(tiled.stitches).arg(faces.size()));
+    }
   });
 }
 

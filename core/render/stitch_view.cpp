@@ -29,6 +29,7 @@ Eigen::Vector3f row_color(int row) {
 Eigen::Vector3f stitch_color(const std::string& type) {
   const mesh::StitchType* t = mesh::find_stitch_type(type);
   if (!t) return border_color(type);
+  if (t->bottom > 1 && t->top > 1) return {0.45f, 0.85f, 0.9f};  // lace: ys 2u y3y
   if (t->top == 2) return {0.35f, 0.75f, 0.35f};
   if (t->top == 3) return {0.15f, 0.5f, 0.2f};
   if (t->bottom == 2) return {0.85f, 0.3f, 0.25f};

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -14,15 +15,13 @@
 namespace skein::mesh {
 namespace {
 
-/// Leaf 2018 Table 2's tiles that have a stitch-mesh face: knit, purl, and the slipped front and back stitches.
+/// Leaf 2018 Table 2's tiles: knit, purl, the slipped front and back stitches, and the lace tiles (a yarn-over
+/// beside a decrease, as many loops made as taken), each one stitch-mesh face.
 struct Tile {
   const char* code;
   const char* type;
 };
-constexpr Tile kTiles[] = {{"K", "k"}, {"P", "p"}, {"F", "sk"}, {"B", "s"}};
-/// Leaf's lace tiles: a yarn-over and a decrease across two or three loops, which no single stitch-mesh face
-/// shape holds (faces take one loop to several or several to one).
-constexpr const char* kLaceTiles[] = {"YS", "2U", "Y3Y"};
+constexpr Tile kTiles[] = {{"K", "k"}, {"P", "p"}, {"F", "sk"}, {"B", "s"}, {"YS", "ys"}, {"2U", "2u"}, {"Y3Y", "y3y"}};
 
 struct Token {
   std::string text;
@@ -158,12 +157,7 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
         row.push_back(tile->type);
         continue;
       }
-      for (const char* lace : kLaceTiles)
-        if (t.text == lace)
-          throw Error(source, at(it->line, t.column),
-                      "tile " + t.text + " (a yarn-over with a decrease across several loops) has no stitch-mesh face yet: write it in 'format knit' with an "
-                      "increase and a decrease (e.g. kyk and d123k)");
-      throw Error(source, at(it->line, t.column), "unknown tile '" + t.text + "'; the tiles are K P F B (Leaf 2018 Table 2), separated by spaces");
+      throw Error(source, at(it->line, t.column), "unknown tile '" + t.text + "'; the tiles are K P F B YS 2U Y3Y (Leaf 2018 Table 2), separated by spaces");
     }
     p.rows.push_back(std::move(row));
     row_line.push_back(it->line);
@@ -237,27 +231,228 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
   return mesh;
 }
 
-StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin) {
+namespace {
+
+bool plain(const StitchFace& f) { return f.bottom == 1 && f.top() == 1; }
+
+/// The face across local edge `k` of face f, where that edge is local edge `want(other)` of it; -1 if none.
+template <class Want>
+int across(const StitchMesh& mesh, const EdgeTable& table, int f, int k, Want want) {
+  const auto& face = mesh.faces[f];
+  const auto& uses = table.at(edge_key(face.vertex(k), face.vertex(k + 1)));
+  if (uses.count != 2) return -1;
+  const auto& other = uses.use[0].face == f && uses.use[0].local == k ? uses.use[1] : uses.use[0];
+  return other.face != f && want(mesh.faces[other.face], other.local) ? other.face : -1;
+}
+
+/// Steps between plain stitches: along the row (right, left) and along the wale (up into the stitch worked into
+/// this one, down to the one this one is worked into). -1 where there is none or it is not plain.
+enum class Step { Right, Left, Up, Down };
+int step(const StitchMesh& mesh, const EdgeTable& table, int f, Step s) {
+  if (f < 0 || !plain(mesh.faces[f])) return -1;
+  int g = -1;
+  switch (s) {
+    case Step::Right: g = across(mesh, table, f, 1, [](const StitchFace& o, int k) { return k == o.left_wale(); }); break;
+    case Step::Left: g = across(mesh, table, f, 3, [](const StitchFace& o, int k) { return k == o.right_wale(); }); break;
+    case Step::Up: g = across(mesh, table, f, 2, [](const StitchFace& o, int k) { return o.is_bottom(k); }); break;
+    case Step::Down: g = across(mesh, table, f, 0, [](const StitchFace& o, int k) { return o.is_top(k); }); break;
+  }
+  return g >= 0 && plain(mesh.faces[g]) ? g : -1;
+}
+int steps(const StitchMesh& mesh, const EdgeTable& table, int f, Step s, int n) {
+  for (int i = 0; i < n && f >= 0; ++i) f = step(mesh, table, f, s);
+  return f;
+}
+
+/// The W x H plain stitches of one repeat from its bottom-left stitch `corner` (rows bottom-up, left to right),
+/// or empty when they are not a grid of distinct plain stitches: each row's stitches side by side, each stitch
+/// worked into the one below it.
+std::vector<std::vector<int>> repeat_grid(const StitchMesh& mesh, const EdgeTable& table, int corner, int w, int h) {
+  std::vector<std::vector<int>> grid(h, std::vector<int>(w, -1));
+  std::set<int> seen;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const int f = c > 0 ? step(mesh, table, grid[r][c - 1], Step::Right) : r > 0 ? step(mesh, table, grid[r - 1][0], Step::Up) : corner;
+      if (f < 0 || !plain(mesh.faces[f]) || !seen.insert(f).second) return {};
+      if (r > 0 && step(mesh, table, grid[r - 1][c], Step::Up) != f) return {};
+      grid[r][c] = f;
+    }
+  return grid;
+}
+
+/// n + 1 points spread evenly by arc length along the polyline `line`.
+std::vector<Eigen::Vector3d> spread(const std::vector<Eigen::Vector3d>& line, int n) {
+  std::vector<double> s{0};
+  for (size_t i = 1; i < line.size(); ++i) s.push_back(s.back() + (line[i] - line[i - 1]).norm());
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 0; k <= n; ++k) {
+    const double t = s.back() * k / n;
+    size_t i = 1;
+    while (i + 1 < line.size() && s[i] < t) ++i;
+    const double a = s[i] > s[i - 1] ? std::clamp((t - s[i - 1]) / (s[i] - s[i - 1]), 0.0, 1.0) : 0.0;
+    out.push_back((1 - a) * line[i - 1] + a * line[i]);
+  }
+  return out;
+}
+
+/// Yuksel 2012 §5.3: each repeat's W x H plain stitches are removed and the pattern's faces generated in their
+/// place. The repeat's border keeps its vertices (its first row takes W loops and its last makes W); the
+/// course lines inside it get as many edges as the pattern's rows make loops, spread evenly along the old line.
+StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector<std::vector<int>>>& repeats, const Pattern& pattern) {
+  StitchMesh out = mesh;
+  const int w = pattern.width(), h = pattern.height();
+  std::vector<char> removed(mesh.faces.size(), 0);
+  std::set<int> freed;  // old vertices inside repeats, dropped unless taken again
+  std::vector<StitchFace> added;
+  const EdgeTable table = edge_table(mesh);
+  for (const auto& grid : repeats) {
+    // The course lines, bottom to top: line r runs under row r (line h over the last row).
+    std::vector<std::vector<int>> lines(h + 1);
+    for (int r = 0; r <= h; ++r) {
+      const auto& f = mesh.faces[grid[std::min(r, h - 1)][0]];
+      lines[r].push_back(r < h ? f.vertex(0) : f.vertex(3));
+      for (int c = 0; c < w; ++c) {
+        const auto& g = mesh.faces[grid[std::min(r, h - 1)][c]];
+        lines[r].push_back(r < h ? g.vertex(1) : g.vertex(2));
+      }
+    }
+    for (int r = 1; r < h; ++r) {
+      for (size_t k = 0; k + 1 < lines[r].size(); ++k) out.cables.erase(std::minmax(lines[r][k], lines[r][k + 1]));
+      const int n = loops_made(pattern.rows[r - 1]);
+      std::vector<Eigen::Vector3d> old;
+      for (int v : lines[r]) old.push_back(mesh.vertices[v]);
+      const auto at = spread(old, n);
+      std::vector<int> line{lines[r].front()};
+      for (int k = 1; k < n; ++k) {
+        const int v = k < w ? lines[r][k] : static_cast<int>(out.vertices.size());
+        if (k < w) out.vertices[v] = at[k];
+        else out.vertices.push_back(at[k]);
+        line.push_back(v);
+      }
+      for (int k = n; k < w; ++k) freed.insert(lines[r][k]);
+      line.push_back(lines[r].back());
+      lines[r] = std::move(line);
+    }
+    for (int r = 0; r < h; ++r) {
+      for (int f : grid[r]) removed[f] = 1;
+      const auto& row = pattern.rows[r];
+      const int taken = loops_taken(row);
+      int a = 0, c = 0;
+      for (const auto& name : row) {
+        const StitchType& type = *find_stitch_type(name);
+        // The old stitch under the new one's middle gives its input face.
+        const int under = grid[r][std::min(w - 1, (2 * a + type.bottom) * w / (2 * taken))];
+        StitchFace face;
+        face.bottom = type.bottom;
+        face.row = mesh.faces[under].row;
+        face.type = type.name;
+        face.input_face = mesh.faces[under].input_face;
+        for (int i = 0; i <= type.bottom; ++i) face.vertices.push_back(lines[r][a + i]);
+        for (int j = type.top; j >= 0; --j) face.vertices.push_back(lines[r + 1][c + j]);
+        added.push_back(std::move(face));
+        a += type.bottom;
+        c += type.top;
+      }
+    }
+    // Cables: on the course edges above their stitches, the repeat's top line included where a stitch is above.
+    for (const auto& cable : pattern.cables)
+      for (int k = cable.first_loop; k < cable.first_loop + cable.over + cable.under; ++k) {
+        const int u = lines[cable.row + 1][k], v = lines[cable.row + 1][k + 1];
+        const auto uses = table.find(edge_key(u, v));
+        if (cable.row + 1 < h || (uses != table.end() && uses->second.count == 2)) out.cables[std::minmax(u, v)] = {cable.over, cable.order};
+      }
+  }
+  std::vector<StitchFace> faces;
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    if (!removed[f]) faces.push_back(std::move(out.faces[f]));
+  faces.insert(faces.end(), std::make_move_iterator(added.begin()), std::make_move_iterator(added.end()));
+  out.faces = std::move(faces);
+  // Drop the freed vertices no new face took, renumbering the rest.
+  for (const auto& face : out.faces)
+    for (int v : face.vertices) freed.erase(v);
+  if (!freed.empty()) {
+    std::vector<int> index(out.vertices.size(), -1);
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t v = 0; v < out.vertices.size(); ++v)
+      if (!freed.count(static_cast<int>(v))) index[v] = static_cast<int>(kept.size()), kept.push_back(out.vertices[v]);
+    out.vertices = std::move(kept);
+    for (auto& face : out.faces)
+      for (int& v : face.vertices) v = index[v];
+    std::map<std::pair<int, int>, CableMark> cables;
+    for (const auto& [edge, mark] : out.cables) cables[std::minmax(index[edge.first], index[edge.second])] = mark;
+    out.cables = std::move(cables);
+  }
+  return out;
+}
+
+}  // namespace
+
+StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin, TileReport* report) {
   if (pattern.format == PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: it cannot be tiled onto a stitch mesh");
-  for (const auto& row : pattern.rows)
-    for (const auto& name : row)
-      if (const auto* t = find_stitch_type(name); t->bottom != 1 || t->top != 1)
-        throw Error("", "pattern " + pattern.name,
-                    "has the " + name + " stitch (" + std::to_string(t->bottom) + " loops below, " + std::to_string(t->top) +
-                        " above): only patterns of plain stitches tile onto a stitch mesh so far, since others would re-mesh the region");
   const int n = static_cast<int>(mesh.faces.size());
   if (origin < 0 || origin >= n) throw Error("", "face " + std::to_string(origin), "does not exist (the stitch mesh has " + std::to_string(n) + " faces)");
   for (int f : faces)
     if (f < 0 || f >= n) throw Error("", "face " + std::to_string(f), "does not exist");
-  const StitchGrid grid = stitch_grid(mesh);
-  const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
+  bool reshapes = !pattern.cables.empty();
+  for (const auto& row : pattern.rows)
+    for (const auto& name : row)
+      if (const auto* t = find_stitch_type(name); t->bottom != 1 || t->top != 1) reshapes = true;
+  TileReport counts;
   StitchMesh out = mesh;
-  for (int f : faces) {
-    auto& face = out.faces[f];
-    if (face.bottom != 1 || face.top() != 1) continue;
-    const auto& row = pattern.rows[mod(grid.level[f] - grid.level[origin], pattern.height())];
-    face.type = row[mod(grid.column[f] - grid.column[origin], static_cast<long>(row.size()))];
+  if (!reshapes) {
+    // Plain stitches only: each chosen plain stitch takes the pattern's type at its row and column from the
+    // origin, modulo the repeat, so the repeat may be cut anywhere.
+    const StitchGrid grid = stitch_grid(mesh);
+    const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
+    for (int f : faces) {
+      auto& face = out.faces[f];
+      if (!plain(face)) continue;
+      const auto& row = pattern.rows[mod(grid.level[f] - grid.level[origin], pattern.height())];
+      face.type = row[mod(grid.column[f] - grid.column[origin], static_cast<long>(row.size()))];
+      ++counts.stitches;
+    }
+  } else {
+    // Increases, decreases, lace or cables re-mesh: whole repeats only, each over W x H chosen plain stitches,
+    // on the lattice of repeats from the origin (found by walking W stitches along the row and H up the wale).
+    if (!plain(mesh.faces[origin]))
+      throw Error("", "face " + std::to_string(origin), "is not a plain stitch: a pattern that re-meshes its stitches starts on one");
+    const int w = pattern.width(), h = pattern.height();
+    const EdgeTable table = edge_table(mesh);
+    const std::set<int> chosen(faces.begin(), faces.end());
+    std::vector<char> used(mesh.faces.size(), 0);
+    std::vector<std::vector<std::vector<int>>> repeats;
+    std::set<int> visited{origin};
+    std::vector<int> queue{origin};
+    while (!queue.empty()) {
+      const int corner = queue.back();
+      queue.pop_back();
+      const auto grid = repeat_grid(mesh, table, corner, w, h);
+      bool fits = !grid.empty(), touches = false;
+      for (const auto& row : grid)
+        for (int f : row) {
+          fits = fits && chosen.count(f) && !used[f];
+          touches = touches || chosen.count(f);
+        }
+      if (fits) {
+        for (const auto& row : grid)
+          for (int f : row) used[f] = 1;
+        repeats.push_back(grid);
+      }
+      if (!touches && corner != origin) continue;
+      for (const auto& [s, k] : {std::pair{Step::Right, w}, std::pair{Step::Left, w}, std::pair{Step::Up, h}, std::pair{Step::Down, h}})
+        if (const int next = steps(mesh, table, corner, s, k); next >= 0 && visited.insert(next).second) queue.push_back(next);
+    }
+    if (repeats.empty())
+      throw Error("", "pattern " + pattern.name,
+                  "re-meshes whole repeats of " + std::to_string(w) + " x " + std::to_string(h) + " plain stitches, and none fits among the chosen stitches from face " +
+                      std::to_string(origin));
+    out = replace_repeats(mesh, repeats, pattern);
+    counts.repeats = static_cast<int>(repeats.size());
+    counts.stitches = counts.repeats * w * h;
+    const StitchReport check = validate(out);
+    if (!check.valid()) throw Error("", "pattern " + pattern.name, "tiling refused: it would leave " + check.summary(1));
   }
+  if (report) *report = counts;
   return out;
 }
 

@@ -51,12 +51,22 @@ Pattern parse_pattern(const std::string& text, const std::string& source);
 /// edges above their stitches (none in the top row: nothing is above it). Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
 
-/// Tiles a knit pattern over `faces` of a stitch mesh (Yuksel 2012 §5.3): the stitch `origin` takes the
-/// pattern's first stitch of its first row, and every other chosen stitch the pattern's stitch at its row and
-/// column from there (stitch_grid), modulo the repeat. Patterns of plain stitches (one loop below, one above)
-/// only: a pattern with increases or decreases would have to re-mesh the region, which is an error here.
-/// Chosen faces of another shape keep their type. The result is valid when the input is.
-StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin);
+/// Tiles a knit pattern over `faces` of a stitch mesh (Yuksel 2012 §5.3); the stitch `origin` takes the
+/// pattern's first stitch of its first row.
+/// - Patterns of plain stitches (one loop below, one above) and no cables: every other chosen plain stitch
+///   takes the pattern's stitch at its row and column from there (stitch_grid), modulo the repeat, so the
+///   repeat may be cut anywhere. Chosen faces of another shape keep their type.
+/// - Patterns with increases, decreases, lace or cables re-mesh: every whole repeat of W x H chosen plain
+///   stitches on the lattice from the origin is removed and the pattern's faces generated in its place; the
+///   repeat's border keeps its vertices, the course lines inside it get the pattern's loop counts, spread
+///   evenly. Stitches outside whole repeats keep their type. Face ids change (kept faces first, in order).
+/// Throws skein::Error when the origin or a face does not exist, the pattern is woven, or no repeat fits.
+/// The result is valid when the input is.
+struct TileReport {
+  int stitches = 0;  ///< chosen stitches the pattern changed or replaced
+  int repeats = 0;   ///< whole repeats re-meshed (0 for plain patterns)
+};
+StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin, TileReport* report = nullptr);
 
 /// Woven yarn of a woven pattern repeated `across` × `up` times: straight weft yarns along x and warp yarns
 /// along y, `spacing` apart, passing over and under each other by one yarn radius at every crossing.

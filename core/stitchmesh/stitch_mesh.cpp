@@ -62,7 +62,7 @@ StitchReport validate(const StitchMesh& mesh) {
     }
     if (default_stitch_type(face.bottom, face.top()).empty()) {
       bad("has " + std::to_string(face.bottom) + " bottom and " + std::to_string(face.top()) +
-          " top edges; no stitch has that shape (1 bottom with 1-3 top, or 2-3 bottom with 1 top)");
+          " top edges; no stitch has that shape (1 bottom with 1-3 top, 2-3 bottom with 1 top, or lace: 2 with 2, 3 with 3)");
       continue;
     }
     const StitchType* type = find_stitch_type(face.type);

@@ -67,7 +67,7 @@ using EdgeTable = std::unordered_map<std::uint64_t, EdgeUses>;
 EdgeTable edge_table(const StitchMesh& mesh);
 
 /// Every rule a stitch mesh keeps: each face has two wale edges and at least one bottom and one top edge,
-/// a shape with a stitch type (1 bottom and up to 3 top, or up to 3 bottom and 1 top) and a type that fits
+/// a shape with a stitch type (1 bottom and up to 3 top, up to 3 bottom and 1 top, or lace: 2 and 2, 3 and 3) and a type that fits
 /// it; each edge joins at most two faces, runs opposite ways in them and is wale in both or course in both;
 /// cable marks sit on inner course edges.
 struct StitchReport {

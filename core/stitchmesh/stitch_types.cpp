@@ -15,6 +15,8 @@ const std::vector<StitchType>& stitch_types() {
     add({"kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}, 1, 3);
     add({"d12k", "d21k", "d12p", "d21p"}, 2, 1);
     add({"d123k", "d132k", "d213k", "d231k", "d312k", "d321k", "d123p", "d132p", "d213p", "d231p", "d312p", "d321p"}, 3, 1);
+    add({"ys", "2u"}, 2, 2);  // Leaf 2018 Table 2's lace tiles: a yarn-over beside a decrease
+    add({"y3y"}, 3, 3);
     return t;
   }();
   return types;
@@ -32,6 +34,8 @@ std::string default_stitch_type(int bottom, int top) {
   if (bottom == 1 && top == 3) return "kpk";
   if (bottom == 2 && top == 1) return "d12k";
   if (bottom == 3 && top == 1) return "d123k";
+  if (bottom == 2 && top == 2) return "ys";
+  if (bottom == 3 && top == 3) return "y3y";
   return "";
 }
 

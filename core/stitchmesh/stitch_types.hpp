@@ -17,7 +17,7 @@ struct StitchType {
 const std::vector<StitchType>& stitch_types();
 /// The type named `name`, or nullptr.
 const StitchType* find_stitch_type(std::string_view name);
-/// The type a fresh face of this shape gets: k, kp, kpk, d12k, d123k; "" when no type fits.
+/// The type a fresh face of this shape gets: k, kp, kpk, d12k, d123k, ys, y3y; "" when no type fits.
 std::string default_stitch_type(int bottom, int top);
 
 }  // namespace skein::mesh

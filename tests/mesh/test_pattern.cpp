@@ -1,5 +1,7 @@
 // Patterns as text: the three formats, their errors, tiled stitch meshes and woven yarn, and every bundled
 // pattern.
+#include <set>
+
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
@@ -38,9 +40,10 @@ TEST(Pattern, KnitRowsAreReadBottomRowFirstWithNameAndSource) {
 }
 
 TEST(Pattern, LeafTilesMapToStitchTypes) {
-  const auto p = parse_pattern("format tiles\nK P F B\n", "t.knit");
+  const auto p = parse_pattern("format tiles\nK P F B YS 2U Y3Y\n", "t.knit");
   EXPECT_EQ(p.format, PatternFormat::Tiles);
-  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "p", "sk", "s"}));
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "p", "sk", "s", "ys", "2u", "y3y"}));
+  EXPECT_EQ(p.width(), 11);  // the lace tiles take 2, 2 and 3 loops
 }
 
 TEST(Pattern, WovenMatrixWithOrWithoutSpaces) {
@@ -59,7 +62,7 @@ TEST(Pattern, ErrorsNameTheLineColumnAndRule) {
   EXPECT_NE(error_in("k p\n").find("line 1, column 1: expected the format first"), std::string::npos);
   EXPECT_NE(error_in("format woven\n101\n10\n").find("line 2: has 3 columns but line 3 has 2"), std::string::npos) << error_in("format woven\n101\n10\n");
   EXPECT_NE(error_in("format woven\n1x\n").find("line 2, column 2: expected 0"), std::string::npos);
-  EXPECT_NE(error_in("format tiles\nK YS\n").find("line 2, column 3: tile YS"), std::string::npos);
+  EXPECT_NE(error_in("format tiles\nK Y2\n").find("line 2, column 3: unknown tile 'Y2'; the tiles are K P F B YS 2U Y3Y"), std::string::npos);
   EXPECT_NE(error_in("format tiles\nK k\n").find("unknown tile 'k'"), std::string::npos);
   // kp makes two loops from one: the row above must take two.
   EXPECT_NE(error_in("format knit\nk\nkp\n").find("line 2: this row takes 1 loops but the row below it (line 3) makes 2"), std::string::npos)
@@ -140,12 +143,87 @@ TEST(Pattern, TilingOntoAStitchMeshPlacesTheRepeatFromTheOriginFace) {
 TEST(Pattern, TilingRefusesWhatItCannotPlace) {
   const auto piece = skein::testing::small_piece(models::tube(), "");
   const auto faces = skein::testing::all_faces(piece);
-  const auto eyelet = parse_pattern("format knit\nk k k k k\nkyk d123k k\n", "eyelet.knit");
-  EXPECT_NE(skein::testing::error_of([&] { tile_pattern(piece, faces, eyelet, 0); }).find("only patterns of plain stitches"), std::string::npos);
   const auto rib = parse_pattern("format knit\nk p\n", "rib.knit");
   EXPECT_NE(skein::testing::error_of([&] { tile_pattern(piece, faces, rib, -1); }).find("face -1: does not exist"), std::string::npos);
   const auto weave = parse_pattern("format woven\n10\n01\n", "w.weave");
   EXPECT_THROW(tile_pattern(piece, faces, weave, 0), Error);
+  // A re-meshing pattern needs whole repeats of plain stitches, from a plain stitch.
+  const auto eyelet = parse_pattern("format knit\nk k k k k\nkyk d123k k\n", "eyelet.knit");
+  EXPECT_NE(skein::testing::error_of([&] { tile_pattern(piece, {0, 1, 2}, eyelet, 0); }).find("none fits among the chosen stitches from face 0"),
+            std::string::npos);
+  const auto shaped = split_course_edge(piece, piece.faces[0].vertex(2), piece.faces[0].vertex(3));  // face 0 becomes an increase
+  EXPECT_NE(skein::testing::error_of([&] { tile_pattern(shaped, faces, eyelet, 0); }).find("face 0: is not a plain stitch"), std::string::npos);
+}
+
+namespace {
+/// A stitch mesh as what can be compared across face and vertex numbering: per face its type, row and corner
+/// positions (rounded to 1e-6 mm), and the cable marks as position pairs.
+struct Geometry {
+  std::multiset<std::string> faces;
+  std::multiset<std::string> cables;
+  bool operator==(const Geometry&) const = default;
+};
+Geometry geometry(const StitchMesh& m) {
+  const auto key = [&](int v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.6f %.6f %.6f)", m.vertices[v].x(), m.vertices[v].y(), m.vertices[v].z());
+    return std::string(buf);
+  };
+  Geometry g;
+  for (const auto& f : m.faces) {
+    std::string s = f.type + " " + std::to_string(f.row) + " " + std::to_string(f.bottom);
+    for (int v : f.vertices) s += key(v);
+    g.faces.insert(s);
+  }
+  for (const auto& [e, mark] : m.cables) {
+    const auto a = key(e.first), b = key(e.second);
+    g.cables.insert(std::min(a, b) + std::max(a, b) + std::to_string(mark.shift) + std::to_string(mark.order));
+  }
+  return g;
+}
+}  // namespace
+
+TEST(Pattern, TilingReMeshesWholeRepeatsAsThePatternsOwnMeshHasThem) {
+  // Yuksel §5.3: tiled over a plain sheet, a pattern with increases, decreases, lace or cables gives the very
+  // stitch mesh the pattern makes by itself (pattern_stitch_mesh), face for face, vertex for vertex.
+  for (const char* text : {"format knit\nk k k k k\nkyk d123k k\n",                 // eyelet: 1 to 3, then 3 to 1
+                           "format knit\nk k k k k\nd123k kyk k\n",                 // fewer loops inside the repeat first
+                           "format tiles\nK K K K K\nYS Y3Y\n2U K K K\n",          // Leaf's lace tiles
+                           "format knit\np k k k k p\np cable2x2- p\n"}) {           // a cable
+    SCOPED_TRACE(text);
+    const auto pattern = parse_pattern(text, "p.knit");
+    auto row = parse_pattern("format knit\nk\n", "k.knit");
+    row.rows[0].assign(pattern.width(), "k");
+    const auto sheet = pattern_stitch_mesh(row, 2, 2 * pattern.height());
+    TileReport report;
+    const auto tiled = tile_pattern(sheet, skein::testing::all_faces(sheet), pattern, 0, &report);
+    ASSERT_TRUE(validate(tiled).valid()) << validate(tiled).summary();
+    EXPECT_EQ(report.repeats, 4);
+    EXPECT_EQ(report.stitches, 4 * pattern.width() * pattern.height());
+    EXPECT_EQ(geometry(tiled), geometry(pattern_stitch_mesh(pattern, 2, 2)));
+    EXPECT_EQ(tiled.vertices.size(), pattern_stitch_mesh(pattern, 2, 2).vertices.size());  // no vertex left unused
+  }
+}
+
+TEST(Pattern, TilingReMeshesOnlyWholeRepeatsOfChosenPlainStitches) {
+  const auto eyelet = parse_pattern("format knit\nk k k k k\nkyk d123k k\n", "eyelet.knit");
+  auto row = parse_pattern("format knit\nk\n", "k.knit");
+  const auto sheet = pattern_stitch_mesh(row, 12, 5);  // 12 x 5 plain stitches: 2 x 2 whole repeats fit
+  TileReport report;
+  const auto tiled = tile_pattern(sheet, skein::testing::all_faces(sheet), eyelet, 0, &report);
+  ASSERT_TRUE(validate(tiled).valid()) << validate(tiled).summary();
+  EXPECT_EQ(report.repeats, 4);
+  const auto stats = stitch_stats(tiled);
+  EXPECT_EQ(stats.stitch_types.at("kyk"), 4);
+  EXPECT_EQ(stats.stitch_types.at("d123k"), 4);
+  EXPECT_EQ(stats.stitch_types.at("k"), 60 - 4 * 10 + 4 * 6);  // outside the repeats, and the repeats' own k
+  // On a curved piece with ring rows the repeats go round and the yarn still joins up.
+  const auto piece = skein::testing::small_piece(models::tube(), "");
+  const auto on_tube = tile_pattern(piece, skein::testing::all_faces(piece), eyelet, 0, &report);
+  ASSERT_TRUE(validate(on_tube).valid()) << validate(on_tube).summary();
+  EXPECT_GT(report.repeats, 0);
+  const auto yarn = emit_yarn(on_tube, StitchLibrary::bundled(), {});
+  EXPECT_GT(yarn.points.size(), 0u);
 }
 
 TEST(Pattern, CablesBecomeCableMarksAboveTheirStitches) {

@@ -11,6 +11,7 @@
 #include "stitch_fixtures.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -42,6 +43,13 @@ mesh::StitchMesh swatch_with_shapes() {
   };
   split_top(rows[3][3], 1);  // a 1-2 below, a 2-1 above
   split_top(rows[6][6], 2);  // a 1-3 below, a 3-1 above
+  // Lace (2-2 and 3-3) in rows 1 and 2, re-meshed by a tiled pattern.
+  const auto lace = mesh::parse_pattern("format tiles\nK K K K K\nYS Y3Y\n", "lace.knit");
+  std::vector<int> chosen = rows[1];
+  chosen.insert(chosen.end(), rows[2].begin(), rows[2].end());
+  mesh::TileReport report;
+  s = mesh::tile_pattern(s, chosen, lace, rows[1][0], &report);
+  EXPECT_GT(report.repeats, 0);
   return s;
 }
 
