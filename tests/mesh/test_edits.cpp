@@ -83,10 +83,19 @@ TEST(Edits, AddThenRemoveAWaleEdgeRoundTrips) {
   EXPECT_TRUE(removed == s);
 }
 
-TEST(Edits, RemovingAWaleEdgeBetweenPlainStitchesIsRefused) {
+TEST(Edits, RemovingAWaleEdgeBetweenPlainStitchesMakesALaceStitch) {
   const auto s = stitched(models::swatch());
-  const auto& f = s.faces[middle_face(s)];
-  const std::string msg = error_of([&] { mesh::remove_wale_edge(s, f.vertex(f.bottom), f.vertex(f.bottom + 1)); });
+  const int m = middle_face(s);
+  const auto& f = s.faces[m];
+  // Two plain stitches merge into one of two loops below and two above: Leaf's lace shape, yarn-over + ssk.
+  const auto merged = mesh::remove_wale_edge(s, f.vertex(f.bottom), f.vertex(f.bottom + 1));
+  EXPECT_TRUE(mesh::validate(merged).valid());
+  EXPECT_EQ(merged.faces.size(), s.faces.size() - 1);
+  EXPECT_EQ(mesh::stitch_stats(merged).stitch_types.at("ys"), 1);
+  // An increase beside a plain stitch would merge into 2 below and 3 above, which no stitch has.
+  const auto split = mesh::split_course_edge(s, f.vertex(f.bottom + 1), f.vertex(f.bottom + 2));
+  const auto& g = split.faces[m];
+  const std::string msg = error_of([&] { mesh::remove_wale_edge(split, g.vertex(g.bottom), g.vertex(g.bottom + 1)); });
   EXPECT_NE(msg.find("refused"), std::string::npos) << msg;
   EXPECT_NE(msg.find("no stitch has that shape"), std::string::npos) << msg;
 }
