@@ -192,8 +192,10 @@ StitchModel cable(int a, int b) {
     for (int slot = 0; slot < 2; ++slot) {
       YarnPiece p;
       const double u0 = (i + kCourseSlots[slot]) / n, u1 = (to + kCourseSlots[slot]) / n;
-      p.points = {bottom(i, slot), at(u0 + 0.25 * (u1 - u0), 0.3, 0.6 * h), at(0.5 * (u0 + u1), 0.5, h), at(u0 + 0.75 * (u1 - u0), 0.7, 0.6 * h),
-                  top(to, slot)};
+      // Each strand leaves its crossing and reaches the next straight along the wale, on the surface, where
+      // the stitches' heads beside the crossing stay clear of it.
+      p.points = {bottom(i, slot), at(u0, 0.15, 0), at(u0 + 0.25 * (u1 - u0), 0.3, 0.6 * h), at(0.5 * (u0 + u1), 0.5, h),
+                  at(u0 + 0.75 * (u1 - u0), 0.7, 0.6 * h), at(u1, 0.85, 0), top(to, slot)};
       m.pieces.push_back(p);
     }
   }

@@ -292,18 +292,32 @@ private:
       throw Error("", "cable edge " + std::to_string(run.edges[0].first) + "-" + std::to_string(run.edges[0].second),
                   "a cable of " + std::to_string(a) + " over " + std::to_string(b) + " stitches has no model (1 to 3 over 1 to 3)");
     const int type = type_id(name);
-    // The cable face sits on the course line: u runs along the run's edges, h along the normal.
-    const auto on_line = [&](double u, double h) {
-      const double x = std::clamp(u, 0.0, 1.0) * n;
+    // The cable face is a band along the course line: u runs along the run's edges, v across the line toward
+    // the stitch above (from one yarn radius below the line to one above, where its crossings sit), h along
+    // the normal. The band keeps the strands of one side apart: squeezed onto the line, two strands of one
+    // side (equal bumps in h, shifted along u) would meet where one comes down and the next goes up.
+    constexpr double kCableBand = 2;
+    std::vector<Eigen::Vector3d> wale(n);
+    for (int i = 0; i < n; ++i) {
+      const auto [va, vb] = run.edges[i];
+      const Eigen::Vector3d mid = 0.5 * (m_mesh.vertices[va] + m_mesh.vertices[vb]);
+      const Eigen::Vector3d along = (m_mesh.vertices[vb] - m_mesh.vertices[va]).normalized();
+      const Eigen::Vector3d nrm = (m_normal[va] + m_normal[vb]).normalized();
+      Eigen::Vector3d w = toward_stitch(va, vb, false, mid) - toward_stitch(va, vb, true, mid);
+      w -= w.dot(along) * along + w.dot(nrm) * nrm;
+      wale[i] = w.norm() > 0 ? Eigen::Vector3d(w.normalized()) : Eigen::Vector3d(nrm.cross(along));
+    }
+    const auto on_band = [&](const Eigen::Vector3d& uvh) {
+      const double x = std::clamp(uvh.x(), 0.0, 1.0) * n;
       const int i = std::min(n - 1, static_cast<int>(x));
       const double t = x - i;
       const auto [va, vb] = run.edges[i];
       const Eigen::Vector3d p = (1 - t) * m_mesh.vertices[va] + t * m_mesh.vertices[vb];
       const Eigen::Vector3d nrm = ((1 - t) * m_normal[va] + t * m_normal[vb]).normalized();
-      return Eigen::Vector3d(p + front * h * m_radius * nrm);
+      return Eigen::Vector3d(p + m_radius * (front * uvh.z() * nrm + kCableBand * (uvh.y() - 0.5) * wale[i]));
     };
     add_model(
-        *model, -1, type, [&](const Eigen::Vector3d& uvh) { return on_line(uvh.x(), uvh.z()); },
+        *model, -1, type, on_band,
         [&](const Crossing& c) {
           const auto [va, vb] = run.edges[c.edge];
           return node(va, vb, kCourseSlots[c.slot], false, c.side == Crossing::Side::Bottom ? 1 : 2);
