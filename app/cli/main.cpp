@@ -195,7 +195,11 @@ int main(int argc, char** argv) {
   relax::YarnRelaxOptions pat_options;
   pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
   pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
-  pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, or with --relax --tiled (the periodic patch has its own)")->capture_default_str();
+  pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, of --relax --tiled, or of --preview (the periodic patch has its own)")
+      ->capture_default_str();
+  std::string pat_preview, pat_preview_png;
+  pat->add_option("--preview", pat_preview, "with --relax: the relaxed repeat tiled NxM (--tile) as yarn (.bcc or .obj), a preview of the fabric");
+  pat->add_option("--preview-png", pat_preview_png, "with --relax: picture of the --tile NxM preview, front and back");
   bool pat_tiled = false;
   pat->add_flag("--relax", pat_relax, "relax the pattern's periodic patch (Leaf 2018 §5; FIRE, pull-through guard) and write it");
   pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
@@ -548,9 +552,15 @@ int main(int argc, char** argv) {
       const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
       // Leaf §6.2: the yarn is made and relaxed at gamma r, and the result scaled back by 1/gamma.
       const double sim_radius = (pat_relax ? pat_gamma : 1.0) * radius;
+      const bool preview = !pat_preview.empty() || !pat_preview_png.empty();
+      if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
+      if (!pat_preview.empty()) check_writable(pat_preview);
+      std::optional<relax::PeriodicPatch> patch_kept;  // for the preview
+      Eigen::Vector2d period_scale(1, 1);
       if (pat_relax && !pat_tiled) {
         auto patch = pattern.format == mesh::PatternFormat::Woven ? relax::periodic_woven_patch(pattern, 4 * radius, sim_radius)
                                                                   : relax::periodic_patch(pattern, library, pat_size, sim_radius);
+        if (preview) patch_kept = patch;
         spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
                      std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
         pat_extra = {{"pattern", pattern.name},
@@ -582,12 +592,28 @@ int main(int argc, char** argv) {
             throw Error("", "--period", "expected SXxSY (e.g. 0.9x1), found '" + pat_period + "'");
           relax::scale_period(targets.periodic, system.points, sx, sy);  // rest lengths stay those of the emitted yarn
           pat_extra["period"] = {sx, sy};
+          period_scale = {sx, sy};
         }
+        const auto color = pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType;
+        if (preview) pat_extra["preview"] = {{"output", pat_preview}, {"png", pat_preview_png}, {"tile", {across, up}}};
         auto state = relax::initial_state(system, pat_options);
-        return exit_status(relax_and_write(yarn, system, targets, pat_options, state,
-                                           {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views, !quiet && isatty(fileno(stderr)), pat_extra,
-                                            pat_panel, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType,
-                                            1 / pat_gamma}));
+        const json report = relax_and_write(yarn, system, targets, pat_options, state,
+                                            {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views,
+                                             !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma});
+        if (preview && report.at("stopped_by") != "interrupted") {
+          // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
+          const auto tiled = pattern.format == mesh::PatternFormat::Woven
+                                 ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
+                                 : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
+          const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale);
+          auto out = relax::with_points(tiled, placed.points / pat_gamma);
+          out.radius /= pat_gamma;
+          if (!pat_preview.empty()) write_yarn(out, pat_preview);
+          if (!pat_preview_png.empty()) render_yarn_tubes(out, pat_preview_png, color, pat_views, pat_panel);
+          spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",
+                       across, up, placed.matched, out.points.size(), pat_preview.empty() ? std::string() : "; wrote " + pat_preview);
+        }
+        return exit_status(report);
       }
       write_yarn(yarn, pat_out);
       if (!pat_report.empty())

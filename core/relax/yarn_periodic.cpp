@@ -187,6 +187,53 @@ PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing,
   return patch;
 }
 
+TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3Xd& relaxed, const mesh::YarnCurves& tiled,
+                                const Eigen::Vector2d& period_scale) {
+  const int n = static_cast<int>(tiled.points.size());
+  if (relaxed.cols() != static_cast<Eigen::Index>(patch.ring.size()))
+    throw Error("", "tiled preview", "the relaxed state has " + std::to_string(relaxed.cols()) + " points, the patch " + std::to_string(patch.ring.size()));
+  std::map<Key, int> real;
+  for (int p = 0; p < static_cast<int>(patch.ring.size()); ++p)
+    if (patch.ring[p] == 0) real.emplace(key_of(patch.yarn.points[p]), p);
+  const int centre = (patch.tiles - 1) / 2;
+  const auto scaled = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.x() * period_scale.x(), x.y() * period_scale.y(), x.z()); };
+  TiledPreview out;
+  out.points.resize(3, n);
+  std::vector<char> placed(n, 0);
+  for (int p = 0; p < n; ++p) {
+    const Eigen::Vector3d& e = tiled.points[p];
+    const int i0 = static_cast<int>(std::floor(e.x() / patch.period_x.x())) - centre, j0 = static_cast<int>(std::floor(e.y() / patch.period_y.y())) - centre;
+    for (int di = -1; di <= 1 && !placed[p]; ++di)
+      for (int dj = -1; dj <= 1 && !placed[p]; ++dj) {
+        const Eigen::Vector3d offset = (i0 + di) * patch.period_x + (j0 + dj) * patch.period_y;
+        if (const auto it = real.find(key_of(e - offset)); it != real.end()) {
+          out.points.col(p) = relaxed.col(it->second) + scaled(offset);
+          placed[p] = 1;
+        }
+      }
+  }
+  // The rest move as the nearest placed point of their yarn (by count of points along it).
+  for (int c = 0; c < tiled.curves(); ++c) {
+    const int begin = tiled.curve_start[c], end = tiled.curve_start[c + 1];
+    std::vector<int> nearest(end - begin, -1);
+    for (int pass = 0; pass < 2; ++pass) {  // forward, then backward
+      int last = -1;
+      for (int k = 0; k < end - begin; ++k) {
+        const int p = pass == 0 ? begin + k : end - 1 - k;
+        if (placed[p]) last = p;
+        else if (last >= 0 && (nearest[p - begin] < 0 || std::abs(last - p) < std::abs(nearest[p - begin] - p))) nearest[p - begin] = last;
+      }
+    }
+    for (int p = begin; p < end; ++p) {
+      if (placed[p]) continue;
+      const int q = nearest[p - begin];
+      out.points.col(p) = scaled(tiled.points[p]) + (q >= 0 ? Eigen::Vector3d(out.points.col(q) - scaled(tiled.points[q])) : Eigen::Vector3d::Zero());
+    }
+  }
+  out.matched = static_cast<int>(std::count(placed.begin(), placed.end(), 1));
+  return out;
+}
+
 PatchDifference centre_repeat_difference(const PeriodicPatch& patch, const Eigen::Matrix3Xd& patch_relaxed, const mesh::YarnCurves& tiled,
                                          const Eigen::Matrix3Xd& tiled_relaxed, int n) {
   const int centre = (patch.tiles - 1) / 2;

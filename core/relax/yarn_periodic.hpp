@@ -51,6 +51,19 @@ void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double 
 /// integrator nor the convergence test (Leaf eq. 5) may count them.
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
 
+/// A tiled preview of a relaxed periodic patch: the yarn `tiled` of an N x M tiling of the same pattern
+/// (mesh::pattern_stitch_mesh and emission with the patch's library, size and radius), each point placed where
+/// the relaxed real point it copies lies plus its repeat's offset. Points are matched where they were emitted
+/// (as the patch matches its virtual points); the tiling's border stitches (cast-on, bind-off, turns), which
+/// no real point copies, move as the nearest matched point along their yarn. `period_scale`: the repeat's
+/// period scale along x and y (scale_period), 1 x 1 when none. Returns the positions [mm].
+struct TiledPreview {
+  Eigen::Matrix3Xd points;
+  int matched = 0;  ///< points placed from a real point (the rest follow their yarn)
+};
+TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3Xd& relaxed, const mesh::YarnCurves& tiled,
+                                const Eigen::Vector2d& period_scale = {1, 1});
+
 /// The periodic patch's relaxed real points against the matching points of the relaxed centre repeat of an
 /// n × n tiling of the same pattern (its stitch mesh from mesh::pattern_stitch_mesh(pattern, n, n), emitted
 /// with the same library and radius), the common translation removed. Points are matched where they were

@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "relax/yarn_io.hpp"
 #include "testing.hpp"
 
 using skein::testing::ScratchDir;
@@ -217,11 +218,22 @@ TEST(Cli, PatternTilesEmitsAndRelaxes) {
   ScratchDir dir;
   const std::string patterns = SKEIN_PATTERNS_DIR;
   auto r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "seed.bcc").string() + " --tile 3x2 --relax --report " +
-                     (dir / "r.json").string());
+                     (dir / "r.json").string() + " --preview " + (dir / "preview.bcc").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const auto report = slurp(dir / "r.json");
   EXPECT_NE(report.find("\"converged\": true"), std::string::npos) << report;
   EXPECT_NE(report.find("\"pull_through_events\": 0"), std::string::npos) << report;
+  EXPECT_NE(report.find("\"preview\""), std::string::npos) << report;
+  // The preview is the 3 x 2 tiling's yarn, placed from the relaxed repeat.
+  r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "emitted.bcc").string() + " --tile 3x2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto preview = skein::relax::read_bcc(dir / "preview.bcc"), emitted = skein::relax::read_bcc(dir / "emitted.bcc");
+  EXPECT_EQ(preview.curve_start, emitted.curve_start);
+  EXPECT_NE(preview.points, emitted.points);
+  r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "y.bcc").string() + " --preview " + (dir / "p.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--preview: needs --relax"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "y.bcc"));
   r = run_skein("pattern " + patterns + "/twill-2-1.weave -o " + (dir / "twill.bcc").string() + " --tile 2x2");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "twill.bcc"));

@@ -420,3 +420,37 @@ TEST(YarnPeriodic, AScaledPeriodKeepsVirtualPointsOnTheirRealOnesAndTheYarnLengt
   EXPECT_TRUE(run.report.converged) << run.report.stopped_by;
   EXPECT_THROW(scale_period(targets.periodic, system.points, 0, 1), skein::Error);
 }
+
+TEST(YarnPeriodic, TiledPreviewPlacesEveryCopyOfARealPointAndBordersFollow) {
+  // The relaxed repeat's positions, tiled: a copy of real point q in repeat (i, j) lies at q's relaxed
+  // position plus the repeat's offset; border points move as the nearest placed point of their yarn.
+  const auto pattern = mesh::parse_pattern("format tiles\nK K K K K\nYS Y3Y\n", "lace.knit");
+  const auto& library = mesh::StitchLibrary::bundled();
+  const auto patch = periodic_patch(pattern, library, {}, 0.6);
+  mesh::EmitOptions emit;
+  emit.yarn_radius = 0.6;
+  const auto tiled = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 3, 4), library, emit);
+  Eigen::Matrix3Xd emitted(3, patch.yarn.points.size());
+  for (size_t p = 0; p < patch.yarn.points.size(); ++p) emitted.col(p) = patch.yarn.points[p];
+  // Unmoved: the preview is the tiling as emitted, where it has copies of real points.
+  const auto same = tile_relaxed_patch(patch, emitted, tiled);
+  EXPECT_GT(same.matched, static_cast<int>(0.9 * tiled.points.size()));
+  EXPECT_LT(same.matched, static_cast<int>(tiled.points.size()));  // the cast-on and bind-off have no copy
+  int exact = 0;
+  for (size_t p = 0; p < tiled.points.size(); ++p) exact += (same.points.col(p) - tiled.points[p]).norm() < 1e-9;
+  EXPECT_EQ(exact, static_cast<int>(tiled.points.size()));  // and the borders follow a zero move
+  // Real points moved by d (and the period scaled): every point of the preview moves alike.
+  const Eigen::Vector3d d(0.3, -0.2, 0.1);
+  const Eigen::Vector2d scale(0.9, 1.1);
+  Eigen::Matrix3Xd moved = emitted;
+  moved.row(0) *= scale.x();
+  moved.row(1) *= scale.y();
+  moved.colwise() += d;
+  const auto shifted = tile_relaxed_patch(patch, moved, tiled, scale);
+  double largest = 0;
+  for (size_t p = 0; p < tiled.points.size(); ++p) {
+    const Eigen::Vector3d expected(scale.x() * tiled.points[p].x() + d.x(), scale.y() * tiled.points[p].y() + d.y(), tiled.points[p].z() + d.z());
+    largest = std::max(largest, (shifted.points.col(p) - expected).norm());
+  }
+  EXPECT_LT(largest, 1e-9);
+}
