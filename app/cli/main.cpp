@@ -221,6 +221,7 @@ int main(int argc, char** argv) {
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
+  pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
   std::string pat_views = "flat";
   int pat_panel = 900;
   pat->add_option("--views", pat_views, "flat (front and back) or front, for --png")->check(CLI::IsMember({"flat", "front"}))->capture_default_str();

@@ -293,10 +293,11 @@ private:
                   "a cable of " + std::to_string(a) + " over " + std::to_string(b) + " stitches has no model (1 to 3 over 1 to 3)");
     const int type = type_id(name);
     // The cable face is a band along the course line: u runs along the run's edges, v across the line toward
-    // the stitch above (from one yarn radius below the line to one above, where its crossings sit), h along
-    // the normal. The band keeps the strands of one side apart: squeezed onto the line, two strands of one
-    // side (equal bumps in h, shifted along u) would meet where one comes down and the next goes up.
-    constexpr double kCableBand = 2;
+    // the stitch above, h along the normal. Its crossings sit one yarn radius below and above the line; its
+    // strands cross from kBandLow to kBandHigh radii (v from 0 to 1), so that two strands of one side (equal
+    // bumps in h, shifted along u) pass each other at different heights instead of meeting, and all of them
+    // pass below the feet of the heads of the stitches above (which reach down toward the line).
+    constexpr double kBandLow = -0.8, kBandHigh = 0.2;
     std::vector<Eigen::Vector3d> wale(n);
     for (int i = 0; i < n; ++i) {
       const auto [va, vb] = run.edges[i];
@@ -314,7 +315,7 @@ private:
       const auto [va, vb] = run.edges[i];
       const Eigen::Vector3d p = (1 - t) * m_mesh.vertices[va] + t * m_mesh.vertices[vb];
       const Eigen::Vector3d nrm = ((1 - t) * m_normal[va] + t * m_normal[vb]).normalized();
-      return Eigen::Vector3d(p + m_radius * (front * uvh.z() * nrm + kCableBand * (uvh.y() - 0.5) * wale[i]));
+      return Eigen::Vector3d(p + m_radius * (front * uvh.z() * nrm + (kBandLow + (kBandHigh - kBandLow) * uvh.y()) * wale[i]));
     };
     add_model(
         *model, -1, type, on_band,
