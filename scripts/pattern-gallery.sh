@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The gallery of bundled patterns (docs/pattern-gallery.md): every pattern's periodic patch relaxed and drawn
-# from the front into docs/images/patterns/. Run after scripts/build.sh; takes about a minute on 2 cores.
+# The gallery of bundled patterns (docs/pattern-gallery.md): every pattern's periodic patch relaxed, tiled to
+# about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/. Run after
+# scripts/build.sh; takes about two minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 skein=build/bin/skein
@@ -12,15 +13,19 @@ page=docs/pattern-gallery.md
 {
   echo "# Pattern gallery"
   echo
-  echo "Every bundled pattern (\`patterns/\`), its periodic patch relaxed with \`skein pattern FILE --relax\` (the repeat in"
-  echo "the middle, one ring of virtual copies around it) and drawn from the front. Made by \`scripts/pattern-gallery.sh\`."
+  echo "Every bundled pattern (\`patterns/\`), its periodic patch relaxed with \`skein pattern FILE --relax\`, then tiled to"
+  echo "about 12 x 12 stitches or yarns (\`--tile NxM --preview-png\`: the relaxed repeat placed over the tiling's yarn; the"
+  echo "cast-on, bind-off and side turns only follow it) and drawn from the front. Made by \`scripts/pattern-gallery.sh\`."
   echo
   echo "| pattern | repeat | steps | picture |"
   echo "| --- | --- | --- | --- |"
 } >"$page"
 for f in patterns/*.knit patterns/*.weave; do
   name=$(basename "$f"); name=${name%.*}
-  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --no-audit --report "$tmp/r.json" --png "$images/$name.png" --views front --png-size 360
+  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --tile 1x1 --report "$tmp/size.json"
+  tile=$(python3 -c "import json, math; w, h = json.load(open('$tmp/size.json'))['repeat']; print(f'{math.ceil(12 / w)}x{math.ceil(12 / h)}')")
+  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --no-audit --report "$tmp/r.json" --tile "$tile" --preview-png "$images/$name.png" \
+    --views front --png-size 360
   python3 - "$f" "$tmp/r.json" "$name" >>"$page" <<'PY'
 import json, sys
 f, report, name = sys.argv[1:]
