@@ -308,7 +308,7 @@ __global__ void k_decide(Dev d) {
     sc.halt = static_cast<int>(Halt::NotFinite);
     return;
   }
-  if (sc.step == 0 || sc.residual0 == 0) sc.residual0 = residual;
+  if (sc.residual0 == 0) sc.residual0 = residual;  // a state may bring its own scale
   sc.residual = residual;
   if (model::converged<double>(sc.step, residual, sc.residual0, sc.residual_prev, d.tolerance, d.stall)) {
     sc.halt = static_cast<int>(Halt::Converged);

@@ -23,6 +23,7 @@
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
 #include "relax/yarn_io.hpp"
+#include "relax/yarn_local.hpp"
 #include "relax/yarn_periodic.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
@@ -185,6 +186,14 @@ int main(int argc, char** argv) {
   ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
   ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
+  std::string ry_warm, ry_warm_project;
+  relax::LocalRelaxOptions ry_local;
+  ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
+                                          "and --rings rings around them");
+  ry->add_option("--warm-project", ry_warm_project, "with --warm-start: the project its yarn was emitted from, before the edits");
+  ry->add_option("--rings", ry_local.rings, "with --warm-start: rings of stitches around the changed ones that relax (grown while the outermost moves)")
+      ->capture_default_str();
+  ry->add_option("--halo", ry_local.halo, "with --warm-start: rings beyond those, held in place")->capture_default_str();
 
   // skein pattern
   auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");
@@ -508,6 +517,45 @@ int main(int argc, char** argv) {
         if (!project.stitch) throw Error(ry_in, "", "holds no stitch mesh; run 'skein stitch' first");
         yarn = yarn_of(ry_in, ry_radius, ry_stitches);
         if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
+      }
+      if (!ry_warm.empty() || !ry_warm_project.empty()) {
+        if (ry_warm.empty() || ry_warm_project.empty() || !is_project(ry_in))
+          throw Error("", "--warm-start", "relaxes a .skein project from the relaxed yarn (--warm-start) of the project before the edits (--warm-project)");
+        if (!ry_resume.empty()) throw Error("", "--warm-start", "does not go with --resume");
+        const auto project = mesh::read_project(ry_in);
+        const auto previous_emitted = yarn_of(ry_warm_project, ry_radius, ry_stitches);
+        const auto previous = relax::read_bcc(ry_warm);
+        if (previous.curve_start != previous_emitted.curve_start)
+          throw Error(ry_warm, "", "holds other curves than the yarn of " + ry_warm_project + " (curve or point counts differ): it was not relaxed from it");
+        Eigen::Matrix3Xd previous_points(3, previous.points.size());
+        for (size_t p = 0; p < previous.points.size(); ++p) previous_points.col(p) = previous.points[p];
+        const auto splice = relax::splice_previous(yarn, previous_emitted, previous_points);
+        spdlog::info("warm start from {}: {} of {} control points emitted as before, {} new", ry_warm, yarn.points.size() - splice.changed(),
+                     yarn.points.size(), splice.changed());
+        relax::LocalRelaxReport local;
+        const auto points = relax::relax_locally(*project.stitch, yarn, splice, ry_options, ry_local, ry_take_up,
+                                                 parse_take_up("--take-up-stitch", ry_take_up_stitch), local);
+        if (local.stopped_by != "unsafe splice") {
+          const auto out = relax::with_points(yarn, points);
+          write_yarn(out, ry_out);
+          spdlog::info("{} after {} steps in {} rounds ({:.2f} s): {} stitches changed, {} rings, {} pull-through events; wrote {}", local.stopped_by,
+                       local.steps, local.rounds, local.wall_seconds, local.changed_stitches, local.rings,
+                       local.pull_through_events < 0 ? std::string("unaudited") : std::to_string(local.pull_through_events), ry_out);
+          if (!ry_report.empty())
+            write_json({{"input", ry_in}, {"converged", local.converged}, {"stopped_by", local.stopped_by}, {"steps", local.steps},
+                        {"wall_seconds", local.wall_seconds}, {"control_points", out.points.size()},
+                        {"pull_through_events", local.pull_through_events < 0 ? json(nullptr) : json(local.pull_through_events)},
+                        {"warm_start", {{"previous", ry_warm}, {"project", ry_warm_project}, {"changed_points", local.changed_points},
+                                        {"changed_stitches", local.changed_stitches}, {"rings", local.rings}, {"rounds", local.rounds},
+                                        {"relaxed_points", local.relaxed_points}, {"held_points", local.held_points},
+                                        {"last_boundary_move_r", local.last_boundary_move}, {"splice_crossings", local.splice_crossings}}},
+                        {"yarn", yarn_json(out)}},
+                       ry_report);
+          if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+          return local.stopped_by == "diverged" ? 1 : 0;
+        }
+        spdlog::warn("warm start: the splice would pass yarn through yarn at {} places; relaxing the whole garment from its emission instead",
+                     local.splice_crossings);
       }
       const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",

@@ -2,17 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <map>
 
 #include "common/error.hpp"
+#include "relax/yarn_system.hpp"
 #include "stitchmesh/yarn_emission.hpp"
 
 namespace skein::relax {
 namespace {
-
-using Key = std::tuple<long long, long long, long long>;
-Key key_of(const Eigen::Vector3d& p) { return {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4)}; }
 
 /// Virtual rings: at least two stitches or yarns wide on every side.
 int virtual_rings(const mesh::Pattern& pattern) {
@@ -25,19 +22,19 @@ void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& re
   const int centre = rings + 1;
   const int n = static_cast<int>(patch.yarn.points.size());
   patch.ring.assign(n, patch.tiles);
-  std::map<Key, int> real;
+  std::map<PositionKey, int> real;
   for (int p = 0; p < n; ++p) {
     const auto [a, b] = repeat[p];
     if (a < 0) continue;
     patch.ring[p] = std::max(std::abs(a - centre), std::abs(b - centre));
-    if (patch.ring[p] == 0) real.emplace(key_of(patch.yarn.points[p]), p);
+    if (patch.ring[p] == 0) real.emplace(position_key(patch.yarn.points[p]), p);
   }
   for (int p = 0; p < n; ++p) {
     if (patch.ring[p] == 0) continue;
     if (patch.ring[p] <= rings) {
       const auto [a, b] = repeat[p];
       const Eigen::Vector3d offset = (a - centre) * patch.period_x + (b - centre) * patch.period_y;
-      if (const auto it = real.find(key_of(patch.yarn.points[p] - offset)); it != real.end()) {
+      if (const auto it = real.find(position_key(patch.yarn.points[p] - offset)); it != real.end()) {
         patch.map.virtual_points.push_back(p);
         patch.map.real_points.push_back(it->second);
         patch.map.offsets.push_back(offset);
@@ -51,43 +48,14 @@ void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& re
 /// Removes the frozen points: they only made the virtual rings' stitches interior ones at emission. Curves
 /// are cut where they leave; the pieces that remain keep their order, and the map its meaning.
 void drop_frozen(PeriodicPatch& patch) {
-  const auto& in = patch.yarn;
-  const int n = static_cast<int>(in.points.size());
+  const int n = static_cast<int>(patch.yarn.points.size());
   std::vector<char> keep(n, 1);
   for (int p : patch.map.frozen) keep[p] = 0;
-  mesh::YarnCurves out;
-  out.radius = in.radius;
-  out.type_names = in.type_names;
-  std::vector<int> index(n, -1), ring;
-  for (int c = 0; c < in.curves(); ++c) {
-    const int begin = in.curve_start[c], end = in.curve_start[c + 1];
-    const bool whole = std::all_of(keep.begin() + begin, keep.begin() + end, [](char k) { return k != 0; });
-    // A closed curve that loses points opens where it does: start the walk just after a dropped point.
-    int first = begin;
-    if (in.closed[c] && !whole)
-      while (keep[first]) ++first;
-    std::vector<int> piece;
-    const auto flush = [&](bool closed) {
-      if (piece.size() >= 2) {
-        for (int p : piece) {
-          index[p] = static_cast<int>(out.points.size());
-          out.points.push_back(in.points[p]);
-          out.point_face.push_back(in.point_face[p]);
-          out.point_type.push_back(in.point_type[p]);
-          ring.push_back(patch.ring[p]);
-        }
-        out.curve_start.push_back(static_cast<int>(out.points.size()));
-        out.closed.push_back(closed);
-      }
-      piece.clear();
-    };
-    for (int k = 0; k < end - begin; ++k) {
-      const int p = begin + (first - begin + k) % (end - begin);
-      if (keep[p]) piece.push_back(p);
-      else flush(false);
-    }
-    flush(in.closed[c] && whole);
-  }
+  std::vector<int> index;
+  auto out = cut_curves(patch.yarn, keep, index);
+  std::vector<int> ring(out.points.size());
+  for (int p = 0; p < n; ++p)
+    if (index[p] >= 0) ring[index[p]] = patch.ring[p];
   PeriodicMap map;
   for (size_t i = 0; i < patch.map.virtual_points.size(); ++i) {
     const int v = index[patch.map.virtual_points[i]], r = index[patch.map.real_points[i]];
@@ -192,9 +160,9 @@ TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3
   const int n = static_cast<int>(tiled.points.size());
   if (relaxed.cols() != static_cast<Eigen::Index>(patch.ring.size()))
     throw Error("", "tiled preview", "the relaxed state has " + std::to_string(relaxed.cols()) + " points, the patch " + std::to_string(patch.ring.size()));
-  std::map<Key, int> real;
+  std::map<PositionKey, int> real;
   for (int p = 0; p < static_cast<int>(patch.ring.size()); ++p)
-    if (patch.ring[p] == 0) real.emplace(key_of(patch.yarn.points[p]), p);
+    if (patch.ring[p] == 0) real.emplace(position_key(patch.yarn.points[p]), p);
   const int centre = (patch.tiles - 1) / 2;
   const auto scaled = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.x() * period_scale.x(), x.y() * period_scale.y(), x.z()); };
   TiledPreview out;
@@ -206,7 +174,7 @@ TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3
     for (int di = -1; di <= 1 && !placed[p]; ++di)
       for (int dj = -1; dj <= 1 && !placed[p]; ++dj) {
         const Eigen::Vector3d offset = (i0 + di) * patch.period_x + (j0 + dj) * patch.period_y;
-        if (const auto it = real.find(key_of(e - offset)); it != real.end()) {
+        if (const auto it = real.find(position_key(e - offset)); it != real.end()) {
           out.points.col(p) = relaxed.col(it->second) + scaled(offset);
           placed[p] = 1;
         }
@@ -239,10 +207,10 @@ PatchDifference centre_repeat_difference(const PeriodicPatch& patch, const Eigen
   const int centre = (patch.tiles - 1) / 2;
   const Eigen::Vector3d shift = (centre - (n - 1) / 2) * (patch.period_x + patch.period_y);
   // The tiling's emitted points by position, as the patch matches its virtual points.
-  std::map<Key, int> emitted;
-  for (int q = 0; q < static_cast<int>(tiled.points.size()); ++q) emitted.emplace(key_of(tiled.points[q] + shift), q);
+  std::map<PositionKey, int> emitted;
+  for (int q = 0; q < static_cast<int>(tiled.points.size()); ++q) emitted.emplace(position_key(tiled.points[q] + shift), q);
   const auto match = [&](const Eigen::Vector3d& p) {
-    const auto it = emitted.find(key_of(p));
+    const auto it = emitted.find(position_key(p));
     return it == emitted.end() ? -1 : it->second;
   };
   std::vector<std::pair<int, int>> pairs;

@@ -210,7 +210,7 @@ public:
       failures = 0;
       good_points = state.points;
       good_velocities = state.velocities;
-      if (state.step == 0 || state.residual0 == 0) state.residual0 = residual;
+      if (state.residual0 == 0) state.residual0 = residual;  // a state may bring its own scale (local relaxation)
       const double relative = residual / state.residual0;
       const bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
       state.residual_prev = residual;

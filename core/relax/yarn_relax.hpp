@@ -81,7 +81,7 @@ struct YarnState {
   double time_step = 0;       ///< the integrator's current step
   double fire_alpha = 0;      ///< FIRE's mixing factor
   long fire_positive = 0;     ///< FIRE's steps downhill in a row
-  double residual0 = 0, residual_prev = 0;  ///< |∇E| at the first and the previous step
+  double residual0 = 0, residual_prev = 0;  ///< |∇E| at the first step (or the scale set before it) and the previous step
   GuardCounters guard;
   long rollbacks = 0, contact_rebuilds = 0, pull_through_events = 0;
 };

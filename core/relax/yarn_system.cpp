@@ -121,4 +121,45 @@ double largest_sample_move(const YarnSystem& system, const Eigen::Matrix3Xd& del
   return largest;
 }
 
+PositionKey position_key(const Eigen::Vector3d& p) {
+  return {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4)};
+}
+
+mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>& keep, std::vector<int>& index) {
+  const int n = static_cast<int>(in.points.size());
+  mesh::YarnCurves out;
+  out.radius = in.radius;
+  out.type_names = in.type_names;
+  index.assign(n, -1);
+  for (int c = 0; c < in.curves(); ++c) {
+    const int begin = in.curve_start[c], end = in.curve_start[c + 1];
+    const bool whole = std::all_of(keep.begin() + begin, keep.begin() + end, [](char k) { return k != 0; });
+    // A closed curve that loses points opens where it does: start the walk just after a lost point.
+    int first = begin;
+    if (in.closed[c] && !whole)
+      while (keep[first]) ++first;
+    std::vector<int> piece;
+    const auto flush = [&](bool closed) {
+      if (piece.size() >= 2) {
+        for (int p : piece) {
+          index[p] = static_cast<int>(out.points.size());
+          out.points.push_back(in.points[p]);
+          out.point_face.push_back(in.point_face[p]);
+          out.point_type.push_back(in.point_type[p]);
+        }
+        out.curve_start.push_back(static_cast<int>(out.points.size()));
+        out.closed.push_back(closed);
+      }
+      piece.clear();
+    };
+    for (int k = 0; k < end - begin; ++k) {
+      const int p = begin + (first - begin + k) % (end - begin);
+      if (keep[p]) piece.push_back(p);
+      else flush(false);
+    }
+    flush(in.closed[c] && whole);
+  }
+  return out;
+}
+
 }  // namespace skein::relax

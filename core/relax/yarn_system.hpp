@@ -2,6 +2,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Core>
@@ -51,6 +52,16 @@ double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& s
 /// yarn has no segment, a non-positive radius or take-up, coincident control points, or a take-up names a
 /// type the yarn does not have.
 YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {});
+
+/// The curves with only the points where `keep` is set: a curve is cut where it loses points (a closed curve
+/// that loses some opens there, just after a lost point) and pieces of fewer than two points are dropped; the
+/// pieces keep their order. `index`: per input point its index in the result, or -1.
+mesh::YarnCurves cut_curves(const mesh::YarnCurves& curves, const std::vector<char>& keep, std::vector<int>& index);
+
+/// A point's position rounded to 0.1 µm. Emission puts the same points at the same places, so this matches
+/// points across emissions: a tiling and its periodic patch, a garment before and after an edit.
+using PositionKey = std::tuple<long long, long long, long long>;
+PositionKey position_key(const Eigen::Vector3d& p);
 
 /// Writes the system's control points back into a copy of `curves` (same structure).
 mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points);
