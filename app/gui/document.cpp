@@ -85,6 +85,7 @@ void Document::require_stitch() const {
 
 EditState Document::with_stitch(mesh::StitchMesh stitch) const {
   EditState next = m_state;
+  if (m_state.stitch && m_state.yarn && m_state.yarn_relaxed) next.previous = EditState::PreviousYarn{*m_state.stitch, *m_state.yarn};
   next.stitch = std::move(stitch);
   next.yarn.reset();
   next.yarn_relaxed = false;
@@ -100,6 +101,7 @@ EditState Document::with_labels(mesh::Labeling labels) const {
   next.rest.reset();
   next.yarn.reset();
   next.yarn_relaxed = false;
+  next.previous.reset();
   return next;
 }
 
@@ -155,6 +157,7 @@ EditState retessellated(const mesh::InputMesh& input, EditState next) {
     next.rest.reset();
     next.yarn.reset();
     next.yarn_relaxed = false;
+    next.previous.reset();
   }
   return next;
 }
@@ -198,6 +201,7 @@ void Document::generate_stitch_mesh() {
   if (!next.values) next.values = mesh::initial_values(*m_input, *m_state.labels, m_state.stitch_size);
   next.stitch = mesh::tessellate(*m_input, *m_state.labels, *next.values);
   next.rest.reset();
+  next.previous.reset();
   next.yarn.reset();
   next.yarn_relaxed = false;
   apply(tr("Generate stitch mesh"), std::move(next));
@@ -261,6 +265,7 @@ void Document::set_relaxed_mesh(mesh::StitchMesh relaxed, const RestSize& rest) 
   require_stitch();
   EditState next = with_stitch(std::move(relaxed));
   next.rest = rest;
+  next.previous.reset();  // every stitch moved: no yarn point would be emitted where it was
   apply(tr("Relax stitch mesh"), std::move(next));
 }
 

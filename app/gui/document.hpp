@@ -31,6 +31,14 @@ struct EditState {
   std::optional<RestSize> rest;         ///< after mesh relaxation; dropped with the stitch mesh it belongs to
   std::optional<mesh::YarnCurves> yarn;  ///< emitted (or relaxed) from the current stitch mesh
   bool yarn_relaxed = false;
+  /// The last relaxed yarn and the stitch mesh it was emitted from, kept through stitch edits: relaxing the
+  /// yarn again starts from it and relaxes only the stitches changed since (relax::relax_locally). Dropped
+  /// when the stitch mesh is made anew or relaxed (every stitch moves).
+  struct PreviousYarn {
+    mesh::StitchMesh stitch;
+    mesh::YarnCurves relaxed;
+  };
+  std::optional<PreviousYarn> previous;
 };
 
 /// The open garment: its input mesh and the undoable edit state. Every edit is a method that throws

@@ -104,6 +104,7 @@ void MainWindow::show_error(const QString& text) {
 }
 
 QString MainWindow::status_text() const { return statusBar()->currentMessage(); }
+QString MainWindow::job_text() const { return m_job_label->text(); }
 
 void MainWindow::build_actions() {
   const auto add = [this](QMenu* menu, const QString& text, const char* name, auto slot, QKeySequence key = {}, bool edits = false) {
@@ -635,9 +636,12 @@ bool MainWindow::relax_yarn() {
     if (!state.yarn) throw Error("emit the yarn first (Relax > Emit yarn)");
     if (state.yarn_relaxed) throw Error("the yarn is relaxed already; emit it again to start over");
     m_job_is_yarn = true;
-    start_job(new YarnRelaxJob(*state.yarn, *state.stitch, relax::YarnRelaxOptions{}, m_backend));
+    auto* job = new YarnRelaxJob(*state.yarn, *state.stitch, relax::YarnRelaxOptions{}, m_backend);
+    // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn.
+    if (state.previous) job->warm_start(state.previous->stitch, state.previous->relaxed);
+    start_job(job);
     set_layer(Layer::Yarn);
-    m_job_label->setText(tr("Relaxing the yarn..."));
+    m_job_label->setText(state.previous ? tr("Relaxing the changed stitches...") : tr("Relaxing the yarn..."));
   });
 }
 
@@ -711,11 +715,20 @@ void MainWindow::on_job_finished() {
   } else if (m_job_is_yarn) {
     auto& yarn_job = static_cast<YarnRelaxJob&>(*job);
     attempt([&] { m_doc.set_yarn(yarn_job.yarn(), true, tr("Relax yarn")); });
-    m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4 pull-through events")
-                             .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
-                             .arg(p.step)
-                             .arg(yarn_job.backend())
-                             .arg(p.pull_through));
+    if (const auto local = yarn_job.local())
+      m_job_label->setText(tr("yarn %1 after %2 steps: %3 changed stitches relaxed locally (%4 rings, %5 points), %6 pull-through events")
+                               .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
+                               .arg(p.step)
+                               .arg(local->changed_stitches)
+                               .arg(local->rings)
+                               .arg(local->relaxed_points)
+                               .arg(p.pull_through));
+    else
+      m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4 pull-through events")
+                               .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
+                               .arg(p.step)
+                               .arg(yarn_job.backend())
+                               .arg(p.pull_through));
   } else {
     auto& mesh_job = static_cast<MeshRelaxJob&>(*job);
     attempt([&] { m_doc.set_relaxed_mesh(mesh_job.stitch(), mesh_job.rest()); });

@@ -80,6 +80,7 @@ public:
   /// The text of the last error shown (tests read it), empty when none.
   const QString& last_error() const { return m_last_error; }
   QString status_text() const;
+  QString job_text() const;  ///< the job line in the status bar: what runs, or how the last job ended
 
 signals:
   /// A relaxation job ended and its result is in the document (or it failed).

@@ -3,6 +3,8 @@
 #include "cuda/yarn_relaxer.hpp"
 #include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
+#include "stitchmesh/stitch_model.hpp"
+#include "stitchmesh/yarn_emission.hpp"
 
 namespace skein::gui {
 
@@ -81,7 +83,7 @@ void MeshRelaxJob::run() {
 
 YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
                            QObject* parent)
-    : RelaxJob(parent), m_yarn(std::move(yarn)), m_system(relax::make_yarn_system(m_yarn)), m_options(options), m_backend(backend) {
+    : RelaxJob(parent), m_yarn(std::move(yarn)), m_stitch(stitch), m_system(relax::make_yarn_system(m_yarn)), m_options(options), m_backend(backend) {
   m_targets = relax::shape_targets(stitch, m_yarn, m_options.shape);
   m_options.interrupt = &m_interrupt;
   m_progress.max_steps = m_options.max_steps;
@@ -91,6 +93,22 @@ YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch
 YarnRelaxJob::~YarnRelaxJob() {
   interrupt();
   wait();
+}
+
+void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed) {
+  mesh::EmitOptions emission;
+  emission.yarn_radius = m_yarn.radius;
+  const auto previous_emitted = mesh::emit_yarn(previous_stitch, mesh::StitchLibrary::bundled(), emission);
+  if (previous_emitted.curve_start != previous_relaxed.curve_start) return;  // not that mesh's yarn: relax it all
+  Eigen::Matrix3Xd points(3, previous_relaxed.points.size());
+  for (size_t p = 0; p < previous_relaxed.points.size(); ++p) points.col(p) = previous_relaxed.points[p];
+  m_splice = relax::splice_previous(m_yarn, previous_emitted, points);
+  m_points = m_splice->points;
+}
+
+std::optional<relax::LocalRelaxReport> YarnRelaxJob::local() const {
+  std::lock_guard lock(m_mutex);
+  return m_local;
 }
 
 mesh::YarnCurves YarnRelaxJob::yarn() const {
@@ -122,6 +140,32 @@ void YarnRelaxJob::run() {
     m_progress.stopped_by.clear();
   }
   try {
+    if (m_splice) {
+      // After stitch edits: the changed stitches and rings around them, from the previous relaxed yarn.
+      relax::LocalRelaxReport local;
+      const auto points = relax::relax_locally(m_stitch, m_yarn, *m_splice, m_options, {}, 1.0, {}, local);
+      m_splice.reset();
+      if (local.stopped_by != "unsafe splice") {
+        std::lock_guard lock(m_mutex);
+        m_local = local;
+        m_points = points;
+        m_backend_name = "cpu";
+        m_progress.step = local.steps;
+        m_progress.converged = local.converged;
+        m_progress.stopped_by = QString::fromStdString(local.stopped_by);
+        m_progress.pull_through = local.pull_through_events;
+      }
+      if (local.stopped_by != "unsafe splice" && local.stopped_by != "interrupted") {
+        emit updated();
+        return;
+      }
+      // Interrupted: a resume goes on with the whole yarn from here. Unsafe: the whole yarn from its emission.
+      if (local.stopped_by == "interrupted") m_system.points = points;
+      if (m_interrupt) {
+        emit updated();
+        return;
+      }
+    }
     if (!m_relaxer) {
       m_relaxer = cuda::make_yarn_relaxer(m_backend, m_system, m_targets, m_options);
       m_state = relax::initial_state(m_system, m_options);

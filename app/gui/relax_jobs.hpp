@@ -10,6 +10,7 @@
 
 #include "document.hpp"
 #include "relax/mesh_relax.hpp"
+#include "relax/yarn_local.hpp"
 #include "relax/yarn_relax.hpp"
 
 namespace skein::gui {
@@ -80,8 +81,14 @@ public:
   YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
                QObject* parent = nullptr);
   ~YarnRelaxJob() override;
+  /// Before the first start: begin from `previous_relaxed`, the relaxed yarn of `previous_stitch`, and relax
+  /// only the stitches changed since and rings around them (relax::relax_locally, on the CPU). A splice that
+  /// would pass yarn through yarn is not used: the whole yarn relaxes then.
+  void warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed);
   mesh::YarnCurves yarn() const;  ///< the latest points
   QString backend() const;
+  /// What the local relaxation did, once it ran.
+  std::optional<relax::LocalRelaxReport> local() const;
 
 protected:
   void run() override;
@@ -90,6 +97,9 @@ private:
   void publish(const relax::YarnStepLog& log);
 
   mesh::YarnCurves m_yarn;
+  mesh::StitchMesh m_stitch;
+  std::optional<relax::Splice> m_splice;          ///< a warm start not yet run
+  std::optional<relax::LocalRelaxReport> m_local;  ///< a warm start run
   relax::YarnSystem m_system;
   relax::ShapeTargets m_targets;
   relax::YarnRelaxOptions m_options;

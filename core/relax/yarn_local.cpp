@@ -138,8 +138,16 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
     const Eigen::Matrix3Xd start = system.points;
     for (int i = 0; i < system.num_points(); ++i) system.points.col(i) = points.col(global[i]);
     if (report.rounds == 0) {
-      // The splice's certificate: no centreline crosses another on the way from the new emission to it.
-      report.splice_crossings = static_cast<long>(TopologyAuditor(system).crossings(start, system.points).size());
+      // The splice's certificate: no new yarn crosses another on the way from the new emission to it. Two
+      // pieces of unchanged yarn are not tested: the previous relaxation (audited) took them from these very
+      // emitted positions to these relaxed ones, and the straight move between the two is not the way it went.
+      const auto is_new = [&](int segment) {
+        for (int k = 0; k < 4; ++k)
+          if (!splice.matched[global[system.segment_points[segment][k]]]) return true;
+        return false;
+      };
+      for (const auto& crossing : TopologyAuditor(system).crossings(start, system.points))
+        report.splice_crossings += is_new(crossing.segment_a) || is_new(crossing.segment_b);
       if (report.splice_crossings > 0) {
         report.converged = false;
         report.stopped_by = "unsafe splice";

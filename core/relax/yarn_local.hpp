@@ -35,8 +35,8 @@ std::vector<int> owner_faces(const mesh::YarnCurves& yarn);
 std::vector<char> face_rings(const mesh::StitchMesh& mesh, const std::vector<int>& seeds, int rings);
 
 struct LocalRelaxOptions {
-  int rings = 2;               ///< faces within this many rings of a changed stitch relax
-  int halo = 2;                ///< and this many rings more are held in place around them
+  int rings = 1;               ///< faces within this many rings of a changed stitch relax
+  int halo = 1;                ///< and this many rings more are held in place around them
   double boundary_move = 0.1;  ///< [r]: the rings grow by one while the outermost relaxed ring moves more
   int max_rings = 8;           ///< ... up to this many
   void validate() const;       ///< throws skein::Error for values out of range
@@ -63,8 +63,10 @@ struct LocalRelaxReport {
 /// `splice`. `emitted`: the yarn emitted from `mesh` (its positions give the rest lengths); `take_up` and
 /// `take_up_by_type` as for make_yarn_system. Each round relaxes only the points it needs, with the CPU
 /// relaxer, `options` and shape preservation from the mesh. The splice is certified first: the auditor runs on
-/// the straight move from the new emission to the splice, and a crossing stops it ("unsafe splice"), points
-/// unchanged. Returns every point's position; points outside the relaxed rings keep the splice's exactly.
+/// the straight move from the new emission to the splice, and a crossing of new yarn (a segment with a point
+/// not matched) stops it ("unsafe splice"), points unchanged; pairs of unchanged yarn kept their relation
+/// through the previous, audited relaxation. Returns every point's position; points outside the relaxed rings
+/// keep the splice's exactly.
 Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCurves& emitted, const Splice& splice, const YarnRelaxOptions& options,
                                const LocalRelaxOptions& local, double take_up, const std::map<std::string, double>& take_up_by_type,
                                LocalRelaxReport& report);

@@ -194,6 +194,32 @@ TEST(Cli, RelaxYarnWritesYarnReportLogAndCheckpointAndResumes) {
   EXPECT_NE(r.output.find("centreline crossings"), std::string::npos) << r.output;
 }
 
+TEST(Cli, RelaxYarnWarmStartRelaxesOnlyWhatAnEditChanged) {
+  ScratchDir dir;
+  const auto before = dir / "before.skein", after = dir / "after.skein", relaxed = dir / "before.bcc";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + before.string()).status, 0);
+  ASSERT_EQ(run_skein("relax-yarn " + before.string() + " -o " + relaxed.string() + " --no-audit").status, 0);
+  ASSERT_EQ(run_skein("edit " + before.string() + " --set-type p --faces 40 -o " + after.string()).status, 0);
+  const auto out = dir / "after.bcc", report = dir / "r.json";
+  auto r = run_skein("relax-yarn " + after.string() + " -o " + out.string() + " --report " + report.string() + " --warm-start " +
+                     relaxed.string() + " --warm-project " + before.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto json = slurp(report);
+  for (const char* key : {"\"converged\": true", "\"changed_stitches\": 1", "\"splice_crossings\": 0", "\"pull_through_events\": 0"})
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  // A warm start needs the project it came from, and yarn relaxed from that project.
+  const auto none = dir / "none.bcc";
+  r = run_skein("relax-yarn " + after.string() + " -o " + none.string() + " --warm-start " + relaxed.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--warm-start: relaxes a .skein project"), std::string::npos) << r.output;
+  ASSERT_EQ(run_skein("stitch " + kModels + "/tube.obj --auto-label -o " + (dir / "tube.skein").string()).status, 0);
+  r = run_skein("relax-yarn " + after.string() + " -o " + none.string() + " --warm-start " + relaxed.string() + " --warm-project " +
+                (dir / "tube.skein").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("holds other curves than the yarn of"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(none));
+}
+
 TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   ScratchDir dir;
   const auto bad = dir.write("bad.ckp", "SKEINCKP and then nothing useful");

@@ -304,6 +304,37 @@ private slots:
     window_shot("gui-yarn");
   }
 
+  void yarn_relaxes_locally_after_painting() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.open_file(kModels + "/swatch.obj"));
+    action(w, "autoLabel")->trigger();
+    action(w, "generate")->trigger();
+    QVERIFY(w.emit_yarn());
+    w.findChild<QAction*>("backendCpu")->trigger();
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(300000));
+    auto& doc = w.document();
+    QVERIFY(doc.state().yarn_relaxed);
+    QVERIFY(!w.job_text().contains("locally"));
+    // Painting drops the yarn but keeps the relaxed one for the next relaxation, which relaxes only the
+    // painted stitch and rings around it.
+    doc.paint({middle_face(*doc.state().stitch)}, "p", "Paint");
+    QVERIFY(!doc.state().yarn);
+    QVERIFY(doc.state().previous.has_value());
+    QVERIFY(w.emit_yarn());
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(300000));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(doc.state().yarn_relaxed);
+    QVERIFY2(w.job_text().contains("1 changed stitches relaxed locally") && w.job_text().contains(", 0 pull-through events"), qPrintable(w.job_text()));
+    // A new stitch mesh has no yarn to start from.
+    action(w, "generate")->trigger();
+    QVERIFY(!doc.state().previous.has_value());
+  }
+
   void yarn_relaxation_pauses_resumes_and_stops() {
     MainWindow w;
     w.show();
