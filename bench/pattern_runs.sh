@@ -1,13 +1,9 @@
 #!/usr/bin/env bash
 # Every bundled pattern's periodic patch relaxed to convergence (Leaf 2018 Table 3's columns), with the
 # per-step audit off (AUDIT= turns it on), one CSV line each. Usage: bench/pattern_runs.sh [OMP threads]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 threads=${1:-2}
 audit=${AUDIT:---no-audit}  # AUDIT= (empty) audits every step
-skein=build/bin/skein
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 echo "pattern,format,real_points,control_points,steps,wall_seconds,ms_per_step,converged,pull_through_events"
 for f in patterns/*.knit patterns/*.weave; do
   OMP_NUM_THREADS=$threads "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --report "$tmp/r.json" --backend cpu $audit

@@ -1,12 +1,8 @@
 #!/usr/bin/env bash
 # Whole yarn-relaxation runs for docs/BENCHMARKS.md: steps and wall time to convergence per integrator, the
 # guard's cost (on vs off), 1 vs 2 threads; one CSV line per run. Usage: bench/relax_yarn_runs.sh [RUNS]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 runs=${1:-3}
-skein=build/bin/skein
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 for model in swatch mitten sweater; do
   "$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model.skein"
 done

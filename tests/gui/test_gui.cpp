@@ -90,6 +90,17 @@ int middle_face(const mesh::StitchMesh& s) {
   return row[row.size() / 2];
 }
 
+/// Shows `w` with the swatch's stitch mesh and its emitted yarn, the CPU chosen for the yarn.
+bool swatch_yarn_shown(MainWindow& w) {
+  w.show();
+  if (!QTest::qWaitForWindowExposed(&w) || !w.open_file(kModels + "/swatch.obj")) return false;
+  action(w, "autoLabel")->trigger();
+  action(w, "generate")->trigger();
+  if (!w.emit_yarn()) return false;
+  w.findChild<QAction*>("backendCpu")->trigger();
+  return true;
+}
+
 bool same(const gui::EditState& a, const gui::EditState& b) {
   const bool labels = a.labels.has_value() == b.labels.has_value() &&
                       (!a.labels || (a.labels->edges == b.labels->edges && a.labels->rows == b.labels->rows &&
@@ -306,13 +317,7 @@ private slots:
 
   void yarn_relaxes_locally_after_painting() {
     MainWindow w;
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    QVERIFY(w.open_file(kModels + "/swatch.obj"));
-    action(w, "autoLabel")->trigger();
-    action(w, "generate")->trigger();
-    QVERIFY(w.emit_yarn());
-    w.findChild<QAction*>("backendCpu")->trigger();
+    QVERIFY(swatch_yarn_shown(w));
     QSignalSpy finished(&w, &MainWindow::job_finished);
     QVERIFY(w.relax_yarn());
     QVERIFY(finished.wait(300000));
@@ -337,13 +342,7 @@ private slots:
 
   void yarn_relaxation_pauses_resumes_and_stops() {
     MainWindow w;
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    QVERIFY(w.open_file(kModels + "/swatch.obj"));
-    action(w, "autoLabel")->trigger();
-    action(w, "generate")->trigger();
-    QVERIFY(w.emit_yarn());
-    w.findChild<QAction*>("backendCpu")->trigger();
+    QVERIFY(swatch_yarn_shown(w));
     QVERIFY(w.relax_yarn());
     auto* pause = action(w, "pause");
     QVERIFY(pause->isEnabled());
