@@ -7,7 +7,9 @@
 #              converged, not converged in the time cap, blew up, or pull-through found by the auditor
 #              (with the guard and without it)
 #   periodic   every bundled knit's periodic patch against the centre of a relaxed 5 x 5 tiling: cost and RMS
-# Usage: bench/charts.sh [speed|stability|periodic|all|plots]   (plots: redraw all from the CSVs)
+#   local      the mitten with 0.2 to 1 % of its stitches repainted: local re-relaxation against a full one
+#              (issue 10; bench/local_runs.sh)
+# Usage: bench/charts.sh [speed|stability|periodic|local|all|plots]   (plots: redraw all from the CSVs)
 # Env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per speed run (300 and 180).
 # Writes docs/images/charts/*.png and the measured data beside them as CSV.
 set -euo pipefail
@@ -201,12 +203,43 @@ unset multiplot
 EOF
 }
 
+local_relaxation() {
+  bench/local_runs.sh 1 0.2:1:1 0.5:1:1 1:1:1 | tee "$out/local-relaxation.csv"
+  local_plot
+}
+
+local_plot() {
+  local data=$out/local-relaxation.csv
+  gnuplot <<EOF
+set terminal pngcairo size 1300,900 font ',12'
+set output '$out/local-relaxation.png'
+set datafile separator ','
+set multiplot layout 2,1 title "The mitten (46,337 points): stitches repainted purl, the yarn relaxed locally from the last result, against in full (FIRE, 2 threads)"
+set logscale x
+set xlabel 'stitches repainted [%]'
+set grid
+set logscale y
+set ylabel 'full time / local time'
+set yrange [1:100]
+plot '$data' every ::1 using 2:19 with linespoints lw 2 pt 7 lc rgb '0x1e88e5' title 'speed-up', 10 with lines dt 2 lc rgb '0x757575' title 'target at 1 %'
+unset logscale y
+set ylabel 'difference [yarn radii]'
+set yrange [0:*]
+plot '$data' every ::1 using 2:20 with linespoints lw 2 pt 7 lc rgb '0x43a047' title 'RMS outside the relaxed rings', \\
+     '' every ::1 using 2:21 with linespoints lw 2 pt 5 lc rgb '0x8e24aa' title 'largest outside', \\
+     '' every ::1 using 2:22 with linespoints lw 2 pt 9 lc rgb '0xfb8c00' title 'RMS over all points', \\
+     0.1 with lines dt 2 lc rgb '0x757575' title 'target (RMS outside)'
+unset multiplot
+EOF
+}
+
 case $what in
   speed) speed ;;
-  plots) speed_plots; stability_plot; periodic_plot ;;
+  plots) speed_plots; stability_plot; periodic_plot; local_plot ;;
   stability) stability ;;
   periodic) periodic ;;
-  all) periodic; stability; speed ;;
-  *) echo "usage: bench/charts.sh [speed|stability|periodic|all|plots]" >&2; exit 2 ;;
+  local) local_relaxation ;;
+  all) periodic; stability; speed; local_relaxation ;;
+  *) echo "usage: bench/charts.sh [speed|stability|periodic|local|all|plots]" >&2; exit 2 ;;
 esac
 echo "wrote $out/"
