@@ -22,6 +22,11 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 command -v gnuplot > /dev/null || { echo "bench/charts.sh needs gnuplot (apt-get install gnuplot-nox)" >&2; exit 2; }
 
+# The first lines of every chart's gnuplot script: a PNG of SIZE (W,H) in font size FONT written to FILE.
+png_head() {  # size font file
+  printf "set terminal pngcairo size %s font ',%s'\nset output '%s'\n" "$1" "$2" "$3"
+}
+
 # One relax-yarn run; prints "stopped_by,steps,wall_seconds,residual,pull_through_events" from its report.
 relax() {  # input log args...
   local input=$1 log=$2
@@ -63,8 +68,7 @@ speed_plots() {
       energy+="'$log' using 10:2 with lines lw 2 title '$title', "
     done < <(tail -n +2 "$summary")
     gnuplot <<EOF
-set terminal pngcairo size 1200,1100 font ',13'
-set output '$out/speed-$model.png'
+$(png_head 1200,1100 13 "$out/speed-$model.png")
 set datafile separator ','
 set multiplot layout 2,1 title "$model: yarn relaxation against wall time (cap ${caption} s; 2 threads, every step audited)"
 set logscale y
@@ -155,8 +159,7 @@ EOF
   xtics=$(grep '^# xtics' "$tmp/map.dat" | cut -c9-)
   rows=$(grep '^# rows' "$tmp/map.dat" | cut -c8-)
   gnuplot <<EOF
-set terminal pngcairo size 1200,1300 font ',12'
-set output '$out/stability.png'
+$(png_head 1200,1300 12 "$out/stability.png")
 set title "Stability map, 10 s per run. swatch: 400 stitches; rings: two linked rings\nwith 30 % of their length. Cells: steps taken, or pull-through events (pt)"
 set xlabel 'time step x the default (Euler 0.002 s, FIRE 0.02 s)'
 set ytics ($ytics)
@@ -182,8 +185,7 @@ periodic() {
 periodic_plot() {
   local data=$out/periodic-vs-tiled.csv
   gnuplot <<EOF
-set terminal pngcairo size 1300,1000 font ',12'
-set output '$out/periodic-vs-tiled.png'
+$(png_head 1300,1000 12 "$out/periodic-vs-tiled.png")
 set datafile separator ','
 set multiplot layout 2,1 title "Every bundled knit: its periodic patch against the centre repeat of a relaxed 5 x 5 tiling (FIRE, 2 threads)"
 set style data histograms
@@ -211,8 +213,7 @@ local_relaxation() {
 local_plot() {
   local data=$out/local-relaxation.csv
   gnuplot <<EOF
-set terminal pngcairo size 1300,900 font ',12'
-set output '$out/local-relaxation.png'
+$(png_head 1300,900 12 "$out/local-relaxation.png")
 set datafile separator ','
 set multiplot layout 2,1 title "The mitten (46,337 points): stitches repainted purl, the yarn relaxed locally from the last result, against in full (FIRE, 2 threads)"
 set logscale x
