@@ -2,8 +2,8 @@
 // stitches repainted purl (spread evenly), and the edited yarn relaxed twice: locally from the previous result
 // (relax::relax_locally, as `skein relax-yarn --warm-start`) and in full from its emission. Prints one CSV line:
 // the times, and how far apart the two results end, outside the relaxed rings and over all points, in yarn
-// radii. Usage: bench_local PROJECT.skein [PERCENT=1] [RINGS=1] [HALO=1]   (FIRE, guard on; the local run once
-// more with every step audited, for its pull-through count)
+// radii. Usage: bench_local PROJECT.skein [PERCENT=1] [RINGS=1] [HALO=1] [ACTIVE=0]   (FIRE, guard on; ACTIVE=1: both
+// edited runs with the active set; the local run once more with every step audited, for its pull-through count)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -53,7 +53,7 @@ double energy_at(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, c
 
 int main(int argc, char** argv) try {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_local PROJECT.skein [PERCENT=1] [RINGS=1] [HALO=1]\n");
+    std::fprintf(stderr, "usage: bench_local PROJECT.skein [PERCENT=1] [RINGS=1] [HALO=1] [ACTIVE=0]\n");
     return 2;
   }
   const double percent = argc > 2 ? std::stod(argv[2]) : 1.0;
@@ -70,6 +70,7 @@ int main(int argc, char** argv) try {
   relax::YarnRelaxOptions options;
   options.audit = false;
   const auto previous = relax_full(before, yarn0, options);
+  options.active_set.enabled = argc > 5 && std::stoi(argv[5]) != 0;
 
   // Repaint every k-th plain stitch purl, k = 100 / percent.
   std::vector<int> plain;

@@ -8,6 +8,11 @@ namespace skein::cuda {
 
 std::unique_ptr<relax::YarnRelaxer> make_yarn_relaxer(relax::Backend backend, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                                                       const relax::YarnRelaxOptions& options) {
+  if (options.active_set.enabled) {
+    if (backend == relax::Backend::Cuda) throw Error("", "--active-set", "the active set runs on the CPU only; use --backend cpu or auto");
+    spdlog::info("active set: relaxing on the CPU (the CUDA relaxer integrates every point)");
+    return relax::make_cpu_yarn_relaxer(system, targets, options);
+  }
   if (backend == relax::Backend::Auto && !targets.periodic.empty()) {
     spdlog::info("periodic patch: relaxing on the CPU (the CUDA relaxer has no periodic boundary conditions yet)");
     return relax::make_cpu_yarn_relaxer(system, targets, options);

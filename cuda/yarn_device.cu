@@ -579,6 +579,7 @@ __global__ void k_end_step(Dev d) {
     log.guard_hits = static_cast<long>(sc.counters[kFinestHits] - sc.finest_before);
     log.held_points = static_cast<long>(sc.counters[kHeldPoints] - sc.held_before);
     log.crossings = 0;
+    log.awake = d.num_points;
   }
   sc.moved_since_rebuild += moved;
   if (sc.moved_since_rebuild >= d.rebuild_after) sc.halt = static_cast<int>(Halt::Rebuild);

@@ -226,7 +226,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   if (!run.log.empty()) {
     // Going on from a checkpoint, the log keeps its rows up to the checkpoint's step (a killed run may have
     // logged further) and goes on from there.
-    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings,seconds\n";
+    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings,seconds,awake\n";
     if (state.step > 0) {
       std::ifstream old(run.log);
       std::string line;
@@ -245,7 +245,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
     if (log)
       *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds()
+           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds() << ',' << s.awake
            << std::endl;  // flushed: a long job's log can be followed
     history.push_back({static_cast<double>(s.step), s.residual, s.energy});
     const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
@@ -286,6 +286,12 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
             {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
             {"yarn", yarn_json(yarn_out_curves)},
             {"history", {{"step", steps}, {"residual", residuals}, {"energy", energies}}}};
+  if (options.active_set.enabled) {
+    const auto& a = report.active;
+    const double all = static_cast<double>(report.steps) * system.num_points();
+    j["active_set"] = {{"point_steps", a.point_steps}, {"integrated_share", all > 0 ? a.point_steps / all : 1.0}, {"sleeps", a.sleeps},
+                       {"wakes_by_force", a.wakes_by_force}, {"wakes_by_move", a.wakes_by_move}};
+  }
   j.update(run.extra);
   if (!run.report.empty()) write_json(j, run.report);
   if (final && !run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, run.color, run.views, run.panel);

@@ -115,8 +115,8 @@ relax::MeshRelaxOptions mesh_options(const Keys& k) {
 }
 
 relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
-  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "checkpoint_every", "checkpoint_minutes",
-          "k_bend", "k_stretch", "k_length", "k_contact"});
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "active_set", "checkpoint_every",
+          "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
   o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
   backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
@@ -126,6 +126,7 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
   o.stall = k.number("stall", o.stall, 0, 1e3);
   o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);
   o.audit = k.flag("audit", true);
+  o.active_set.enabled = k.flag("active_set", false);
   // Step-based checkpoints by default: a resumed job then ends exactly as an uninterrupted one would.
   o.checkpoint_every = k.integer("checkpoint_every", 500, 0, 1L << 40);
   o.checkpoint_minutes = k.number("checkpoint_minutes", 0, 0, 1e6);

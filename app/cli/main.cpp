@@ -186,6 +186,11 @@ int main(int argc, char** argv) {
   ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
   ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
+  ry->add_flag("--active-set", ry_options.active_set.enabled,
+               "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
+  ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")->capture_default_str();
+  ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
+      ->capture_default_str();
   std::string ry_warm, ry_warm_project;
   relax::LocalRelaxOptions ry_local;
   ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
@@ -683,8 +688,13 @@ int main(int argc, char** argv) {
       const auto system = relax::make_yarn_system(before);
       Eigen::Matrix3Xd q1(3, system.num_points());
       for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
-      double largest = 0;
-      for (int p = 0; p < system.num_points(); ++p) largest = std::max(largest, (q1.col(p) - system.points.col(p)).norm());
+      double largest = 0, squares = 0;
+      for (int p = 0; p < system.num_points(); ++p) {
+        const double d = (q1.col(p) - system.points.col(p)).norm();
+        largest = std::max(largest, d);
+        squares += d * d;
+      }
+      const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
       const auto crossing_list = relax::TopologyAuditor(system, audit_samples).crossings(system.points, q1);
       const long crossings = static_cast<long>(crossing_list.size());
       const auto links_before = relax::linking_numbers(before), links_after = relax::linking_numbers(after);
@@ -692,7 +702,8 @@ int main(int argc, char** argv) {
       for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
       for (const auto& l : links_after) lk1[{l.a, l.b}] = l.number;
       std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
-                << system.num_points() << "\nlargest control-point move: " << largest << " mm\n"
+                << system.num_points() << "\nlargest control-point move: " << largest << " mm (" << largest / r
+                << " r)\nRMS control-point move: " << rms << " mm (" << rms / r << " r)\n"
                 << "centreline crossings on the straight path between the two states: " << crossings << "\n";
       for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {
         const auto& c = crossing_list[i];

@@ -135,7 +135,9 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
     return std::array<long, 2>{s * per + k, s * per + k + 1};
   };
   // Swept boxes of the edges, bucketed in a grid whose cells are as wide as the widest box.
+  // Two edges that both stay put cannot meet during the move: only pairs with a moving edge are tested.
   std::vector<Eigen::AlignedBox3d> boxes(edges);
+  std::vector<char> moving(edges);
   double widest = 0;
 #pragma omp parallel for schedule(static) reduction(max : widest)
   for (long e = 0; e < edges; ++e) {
@@ -143,6 +145,7 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
     Eigen::AlignedBox3d box(p0.col(i));
     box.extend(Vector3d(p0.col(j))).extend(Vector3d(p1.col(i))).extend(Vector3d(p1.col(j)));
     boxes[e] = box;
+    moving[e] = p0.col(i) != p1.col(i) || p0.col(j) != p1.col(j);
     widest = std::max(widest, box.sizes().maxCoeff());
   }
   const double cell = std::max(widest, 1e-9);
@@ -164,6 +167,7 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
   std::vector<std::vector<Crossing>> found(edges > 0 ? omp_get_max_threads() : 0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (long e = 0; e < edges; ++e) {
+    if (!moving[e]) continue;
     const Vector3d c = boxes[e].center();
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
@@ -172,7 +176,10 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
           if (cell == cells.end()) continue;
           for (long i = cell->second.first; i < cell->second.second; ++i) {
             const long f = sorted[i].second;
-            if (f <= e || m_system.adjacent(static_cast<int>(e / m_samples), static_cast<int>(f / m_samples)) || !boxes[e].intersects(boxes[f])) continue;
+            // Each pair once: a pair of moving edges from its first edge, a moving edge and a still one from the moving one.
+            if (f == e || (moving[f] && f < e) || !boxes[e].intersects(boxes[f]) ||
+                m_system.adjacent(static_cast<int>(e / m_samples), static_cast<int>(f / m_samples)))
+              continue;
             const auto [ei, ej] = ends(e);
             const auto [fi, fj] = ends(f);
             const Vector3d a0[2] = {p0.col(ei), p0.col(ej)}, a1[2] = {p1.col(ei), p1.col(ej)};

@@ -31,19 +31,10 @@ Splice splice_previous(const mesh::YarnCurves& emitted, const mesh::YarnCurves& 
       out.points.col(p) = previous_relaxed.col(it->second);
       out.matched[p] = 1;
     }
-  // The rest move as the nearest matched point of their yarn (by count of points along it) moved.
-  for (int c = 0; c < emitted.curves(); ++c) {
-    const int begin = emitted.curve_start[c], end = emitted.curve_start[c + 1];
-    for (int p = begin; p < end; ++p) {
-      if (out.matched[p]) continue;
-      int q = -1;
-      for (int d = 1; d < end - begin && q < 0; ++d)
-        for (const int r : {p - d, p + d})
-          if (q < 0 && r >= begin && r < end && out.matched[r]) q = r;
-      out.points.col(p) = emitted.points[p];
-      if (q >= 0) out.points.col(p) += out.points.col(q) - emitted.points[q];
-    }
-  }
+  // The rest move as the nearest matched point of their yarn.
+  Eigen::Matrix3Xd base(3, n);
+  for (int p = 0; p < n; ++p) base.col(p) = emitted.points[p];
+  follow_placed(emitted, out.matched, base, out.points);
   return out;
 }
 

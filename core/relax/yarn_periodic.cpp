@@ -180,24 +180,10 @@ TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3
         }
       }
   }
-  // The rest move as the nearest placed point of their yarn (by count of points along it).
-  for (int c = 0; c < tiled.curves(); ++c) {
-    const int begin = tiled.curve_start[c], end = tiled.curve_start[c + 1];
-    std::vector<int> nearest(end - begin, -1);
-    for (int pass = 0; pass < 2; ++pass) {  // forward, then backward
-      int last = -1;
-      for (int k = 0; k < end - begin; ++k) {
-        const int p = pass == 0 ? begin + k : end - 1 - k;
-        if (placed[p]) last = p;
-        else if (last >= 0 && (nearest[p - begin] < 0 || std::abs(last - p) < std::abs(nearest[p - begin] - p))) nearest[p - begin] = last;
-      }
-    }
-    for (int p = begin; p < end; ++p) {
-      if (placed[p]) continue;
-      const int q = nearest[p - begin];
-      out.points.col(p) = scaled(tiled.points[p]) + (q >= 0 ? Eigen::Vector3d(out.points.col(q) - scaled(tiled.points[q])) : Eigen::Vector3d::Zero());
-    }
-  }
+  // The rest move as the nearest placed point of their yarn.
+  Eigen::Matrix3Xd base(3, n);
+  for (int p = 0; p < n; ++p) base.col(p) = scaled(tiled.points[p]);
+  follow_placed(tiled, placed, base, out.points);
   out.matched = static_cast<int>(std::count(placed.begin(), placed.end(), 1));
   return out;
 }

@@ -63,6 +63,7 @@ void YarnRelaxOptions::validate() const {
   check_param(stall, "stall");
   check_param(max_seconds, "max_seconds");
   check_param(checkpoint_minutes, "checkpoint_minutes");
+  if (active_set.enabled) active_set.validate();
   if (guard.max_move > 0.5 * contact_margin)
     throw Error("", "yarn relaxation", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin (" +
                                            std::to_string(contact_margin) + " r), or pairs could meet between contact updates");
@@ -100,49 +101,100 @@ Backend parse_backend(const std::string& name) {
 
 double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
                    Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities, Eigen::Matrix3Xd* damping) {
-  const int segments = system.num_segments();
-  const model::IntrinsicParams<double> intrinsic{params.k_bend, params.k_stretch, params.k_length};
-  const model::ContactParams<double> contact{params.k_contact, velocities ? params.k_dt : 0.0, velocities ? params.k_dn : 0.0, system.radius,
-                                             params.contact_soft};
-  const V zero{0, 0, 0};
-  const auto view = segment_view(system);
-  const auto point = [&](int p) { return vec(points.col(p)); };
-  const auto velocity = [&](int p) { return velocities ? vec(velocities->col(p)) : zero; };
-  // Contact samples of every segment (Leaf §3.1), then per segment the gradient on its four control points
-  // (and the contact damping force), gathered per point afterwards (Leaf §3.2 stencils): no two threads
-  // write the same place.
+  YarnForces forces(system, params);
+  forces.set_pairs(pairs);
+  return forces.evaluate(points, nullptr, gradient, velocities, damping);
+}
+
+YarnForces::YarnForces(const YarnSystem& system, const YarnParams& params)
+    : m_system(system), m_params(params), m_new_partners(system.num_segments(), 1) {
   const int samples = system.sample_start.back() + system.contact_samples.back();
-  std::vector<V> pos(samples), vel(samples);
-  std::vector<double> weight(samples), arc(samples);
-  const model::SampleView<double> sample_view{pos.data(), vel.data(), weight.data(), arc.data()};
+  m_pos.resize(samples);
+  m_vel.resize(samples);
+  m_weight.resize(samples);
+  m_arc.resize(samples);
+  m_grad.resize(system.num_segments());
+  m_damp.resize(system.num_segments());
+  m_energy.resize(system.num_segments());
+}
+
+void YarnForces::set_pairs(const ContactPairs& pairs) {
+  m_pairs = &pairs;
+  if (m_last_start.size() != pairs.start.size()) {
+    m_valid = false;
+  } else {
 #pragma omp parallel for schedule(static)
-  for (int s = 0; s < segments; ++s) model::segment_samples(view, s, point, velocity, sample_view);
-  std::vector<std::array<V, 4>> seg_grad(segments), seg_damp(segments);
-  std::vector<double> seg_energy(segments);
-  const model::PairView pair_view{pairs.start.data(), pairs.partner.data()};
-#pragma omp parallel for schedule(dynamic, 256)
+    for (int s = 0; s < m_system.num_segments(); ++s)
+      m_new_partners[s] |= !std::equal(pairs.partner.begin() + pairs.start[s], pairs.partner.begin() + pairs.start[s + 1],
+                                       m_last_partner.begin() + m_last_start[s], m_last_partner.begin() + m_last_start[s + 1]);
+  }
+  m_last_start = pairs.start;
+  m_last_partner = pairs.partner;
+}
+
+double YarnForces::evaluate(const Eigen::Matrix3Xd& points, const std::vector<char>* changed, Eigen::Matrix3Xd& gradient,
+                            const Eigen::Matrix3Xd* velocities, Eigen::Matrix3Xd* damping) {
+  if (!m_pairs) throw Error("", "yarn forces", "no contact pairs were set");
+  const int segments = m_system.num_segments();
+  const bool damped = velocities != nullptr;
+  if (damped != m_damped) m_valid = false;
+  m_damped = damped;
+  const bool all = !m_valid || !changed;
+  const model::IntrinsicParams<double> intrinsic{m_params.k_bend, m_params.k_stretch, m_params.k_length};
+  const model::ContactParams<double> contact{m_params.k_contact, damped ? m_params.k_dt : 0.0, damped ? m_params.k_dn : 0.0, m_system.radius,
+                                             m_params.contact_soft};
+  const V zero{0, 0, 0};
+  const auto view = segment_view(m_system);
+  const auto point = [&](int p) { return vec(points.col(p)); };
+  const auto velocity = [&](int p) { return damped ? vec(velocities->col(p)) : zero; };
+  // Contact samples of every segment with a changed point (Leaf §3.1).
+  std::vector<char> resampled(segments, 1);
+  const model::SampleView<double> sample_view{m_pos.data(), m_vel.data(), m_weight.data(), m_arc.data()};
+#pragma omp parallel for schedule(static)
   for (int s = 0; s < segments; ++s) {
+    if (!all) {
+      const auto& sp = m_system.segment_points[s];
+      resampled[s] = (*changed)[sp[0]] || (*changed)[sp[1]] || (*changed)[sp[2]] || (*changed)[sp[3]];
+    }
+    if (resampled[s]) model::segment_samples(view, s, point, velocity, sample_view);
+  }
+  // Per segment the gradient on its four control points (and the contact damping force) where its samples,
+  // a partner's samples or its partners changed; gathered per point afterwards (Leaf §3.2 stencils): no two
+  // threads write the same place.
+  const ContactPairs& pairs = *m_pairs;
+  const model::PairView pair_view{pairs.start.data(), pairs.partner.data()};
+  long computed = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : computed)
+  for (int s = 0; s < segments; ++s) {
+    bool stale = all || resampled[s] || m_new_partners[s];
+    for (int k = pairs.start[s]; k < pairs.start[s + 1] && !stale; ++k) stale = resampled[pairs.partner[k]];
+    if (!stale) continue;
+    ++computed;
     V g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
-    seg_energy[s] = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
+    m_energy[s] = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
     for (int k = 0; k < 4; ++k) {
-      seg_grad[s][k] = g[k];
-      seg_damp[s][k] = d[k];
+      m_grad[s][k] = g[k];
+      m_damp[s][k] = d[k];
     }
   }
+  m_computed = computed;
+  m_valid = true;
+  std::fill(m_new_partners.begin(), m_new_partners.end(), 0);
   gradient.setZero(3, points.cols());
   if (damping) damping->setZero(3, points.cols());
 #pragma omp parallel for schedule(static)
-  for (int p = 0; p < system.num_points(); ++p) {
+  for (int p = 0; p < m_system.num_points(); ++p) {
     V g = zero, d = zero;
-    for (int i = system.point_segments_start[p]; i < system.point_segments_start[p + 1]; ++i) {
-      const int code = system.point_segments[i];
-      g += seg_grad[code >> 2][code & 3];
-      d += seg_damp[code >> 2][code & 3];
+    for (int i = m_system.point_segments_start[p]; i < m_system.point_segments_start[p + 1]; ++i) {
+      const int code = m_system.point_segments[i];
+      g += m_grad[code >> 2][code & 3];
+      d += m_damp[code >> 2][code & 3];
     }
     gradient.col(p) = eig(g);
-    if (damping) damping->col(p) = eig(d) - params.k_global * system.mass[p] * params.density * velocities->col(p);  // eq. 11, lumped
+    if (damping && damped)
+      damping->col(p) = eig(d) - m_params.k_global * m_system.mass[p] * m_params.density * velocities->col(p);  // eq. 11, lumped
   }
-  return ordered_sum(segments, [&](long s) { return seg_energy[s]; });
+  return ordered_sum(segments, [&](long s) { return m_energy[s]; });
 }
 
 YarnState initial_state(const YarnSystem& system, const YarnRelaxOptions& options) {
@@ -159,7 +211,8 @@ namespace {
 class CpuYarnRelaxer final : public YarnRelaxer {
 public:
   CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
-      : m_system(system), m_targets(targets), m_options(options), m_auditor(system) {
+      : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
+        m_changed(system.num_points(), 1) {
     m_options.validate();
     std::vector<int> groups(system.num_points(), -1);
     for (int l = 0; l < static_cast<int>(targets.boundary_loops.size()); ++l)
@@ -170,6 +223,12 @@ public:
       int& real = groups[targets.periodic.real_points[i]];
       if (real < 0) real = next++;
       groups[targets.periodic.virtual_points[i]] = real;
+    }
+    if (m_options.active_set.enabled) {
+      // Points tied to others by a constraint move with them: they never sleep.
+      std::vector<char> tied(system.num_points());
+      for (int p = 0; p < system.num_points(); ++p) tied[p] = groups[p] >= 0;
+      m_active.emplace(system, m_options.active_set, std::move(tied));
     }
     m_guard.emplace(system, m_options.guard, std::move(groups));
     m_inv_mass.resize(system.num_points());
@@ -184,6 +243,8 @@ public:
     const auto fingerprint = checkpoint_fingerprint(m_system, m_options.method);
     m_guard->set_counters(state.guard);
     refresh_contacts(state);
+    m_forces.invalidate();
+    if (m_active) m_active->wake_all();
 
     YarnRelaxReport report;
     Eigen::Matrix3Xd grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
@@ -199,6 +260,8 @@ public:
         state.velocities = good_velocities;
         state.time_step *= 0.5;
         ++state.rollbacks;
+        m_forces.invalidate();
+        if (m_active) m_active->wake_all();
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state, step {:.3g} s", state.step, state.time_step);
         if (++failures > 20) {
           report.stopped_by = "diverged";
@@ -212,7 +275,19 @@ public:
       good_velocities = state.velocities;
       if (state.residual0 == 0) state.residual0 = residual;  // a state may bring its own scale (local relaxation)
       const double relative = residual / state.residual0;
-      const bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+      bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+      if (converged && m_active) {
+        // The honest final check: the whole system's forces from scratch, none of them kept.
+        m_forces.invalidate();
+        energy = forces(state, grad, damping);
+        if (!m_targets.periodic.empty()) constrain_gradient(m_targets.periodic, grad);
+        residual = std::sqrt(ordered_sum(grad.cols(), [&](long p) { return grad.col(p).squaredNorm(); }));
+        converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+        if (!converged) {
+          spdlog::warn("step {}: the active set's forces disagree with a fresh evaluation; every point wakes", state.step);
+          m_active->wake_all();
+        }
+      }
       state.residual_prev = residual;
       if (converged) {
         report.converged = true;
@@ -233,6 +308,8 @@ public:
       }
 
       const GuardCounters before = m_guard->counters();
+      const long awake = m_active ? m_active->choose(grad, m_options.tolerance * state.residual0 / std::sqrt(static_cast<double>(grad.cols())))
+                                  : grad.cols();
       const double dt = propose(state, grad, damping, limit, delta);
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
       if (!m_targets.periodic.empty()) apply_periodic(m_targets.periodic, delta, state.velocities);
@@ -243,6 +320,8 @@ public:
       // The velocity that matches the move the guard let through.
       if (scale < 1) state.velocities = delta / dt;
       ++state.step;
+      mark_changed(state, delta);
+      if (m_active) m_active->moved(delta, m_pairs);
       const double moved = largest_sample_move(m_system, delta);
       m_moved_since_rebuild += moved;
       if (m_moved_since_rebuild >= 0.5 * m_options.contact_margin * r) refresh_contacts(state);
@@ -259,6 +338,7 @@ public:
         log.guard_hits = state.guard.finest_hits - before.finest_hits;
         log.held_points = state.guard.held_points - before.held_points;
         log.crossings = crossings;
+        log.awake = awake;
         on_step(log);
       }
       const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;
@@ -281,6 +361,7 @@ public:
     report.pull_through_events = m_options.audit ? state.pull_through_events : -1;
     report.rollbacks = state.rollbacks;
     report.contact_rebuilds = state.contact_rebuilds;
+    if (m_active) report.active = m_active->counters();
     return report;
   }
 
@@ -289,15 +370,25 @@ private:
     m_pairs = find_contact_pairs(m_system, state.points, m_options.contact_margin * m_system.radius);
     ++state.contact_rebuilds;
     m_guard->reset(m_pairs);
+    m_forces.set_pairs(m_pairs);
     m_moved_since_rebuild = 0;
+  }
+
+  /// Which points the next evaluation must see as changed: those that moved, and for Euler's damping those
+  /// whose velocity changed.
+  void mark_changed(const YarnState& state, const Eigen::Matrix3Xd& delta) {
+    const bool damped = m_options.method == YarnMethod::Euler;
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < m_system.num_points(); ++p)
+      m_changed[p] = delta.col(p).squaredNorm() > 0 || (damped && state.velocities.col(p) != m_velocities.col(p));
   }
 
   /// Energy and its gradient (yarn model and patch tracking) at `state`, and for Euler the damping forces
   /// (FIRE steers its own velocities and takes none).
   double forces(const YarnState& state, Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& damping) {
     const bool damped = m_options.method == YarnMethod::Euler;
-    double energy = yarn_energy(m_system, m_options.params, m_pairs, state.points, grad, damped ? &state.velocities : nullptr,
-                                damped ? &damping : nullptr);
+    double energy = m_forces.evaluate(state.points, &m_changed, grad, damped ? &state.velocities : nullptr, damped ? &damping : nullptr);
+    if (damped) m_velocities = state.velocities;
     if (!m_targets.patches.empty()) energy += patch_energy(m_targets, m_options.shape, m_system.radius, state.points, grad);
     return energy;
   }
@@ -305,10 +396,15 @@ private:
   /// The integrator's proposed move into `delta`; returns the time step it used.
   double propose(YarnState& state, const Eigen::Matrix3Xd& grad, const Eigen::Matrix3Xd& damping, double limit, Eigen::Matrix3Xd& delta) {
     const int n = m_system.num_points();
+    const auto asleep = [&](int p) { return m_active && m_active->asleep(p); };
     Eigen::Matrix3Xd accel(3, n);
+    // Sleeping points neither move nor carry velocity.
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p)
+      if (asleep(p)) state.velocities.col(p).setZero();
     if (m_options.method == YarnMethod::Euler) {
 #pragma omp parallel for schedule(static)
-      for (int p = 0; p < n; ++p) accel.col(p) = (damping.col(p) - grad.col(p)) * m_inv_mass[p];
+      for (int p = 0; p < n; ++p) accel.col(p) = asleep(p) ? Eigen::Vector3d::Zero() : Eigen::Vector3d((damping.col(p) - grad.col(p)) * m_inv_mass[p]);
       // Leaf eq. 2: the largest step after which no contact sample moves more than ε r.
       double dt = state.time_step;
 #pragma omp parallel for schedule(static) reduction(min : dt)
@@ -328,9 +424,12 @@ private:
       return dt;
     }
     // FIRE (Bitzek et al. 2006) on the forces, semi-implicit.
-    const Eigen::Matrix3Xd force = -grad;
+    Eigen::Matrix3Xd force = -grad;
 #pragma omp parallel for schedule(static)
-    for (int p = 0; p < n; ++p) accel.col(p) = force.col(p) * m_inv_mass[p];
+    for (int p = 0; p < n; ++p) {
+      if (asleep(p)) force.col(p).setZero();
+      accel.col(p) = force.col(p) * m_inv_mass[p];
+    }
     const double power = ordered_sum(n, [&](long p) { return force.col(p).dot(state.velocities.col(p)); });
     const double vnorm = std::sqrt(ordered_sum(n, [&](long p) { return state.velocities.col(p).squaredNorm(); }));
     const double fnorm = std::sqrt(ordered_sum(n, [&](long p) { return force.col(p).squaredNorm(); }));
@@ -364,6 +463,10 @@ private:
   std::optional<PullThroughGuard> m_guard;
   Eigen::VectorXd m_inv_mass;
   ContactPairs m_pairs;
+  YarnForces m_forces;
+  std::vector<char> m_changed;   ///< per point: moved (or for Euler its velocity changed) since the last evaluation
+  Eigen::Matrix3Xd m_velocities;  ///< Euler: the velocities of the last evaluation
+  std::optional<ActiveSet> m_active;
   double m_moved_since_rebuild = 0;
 };
 

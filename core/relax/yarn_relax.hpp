@@ -8,7 +8,9 @@
 #include <Eigen/Core>
 
 #include "relax/pull_through_guard.hpp"
+#include "relax/yarn_active.hpp"
 #include "relax/yarn_contacts.hpp"
+#include "relax/yarn_segment.hpp"
 #include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 
@@ -40,6 +42,40 @@ YarnParams radius_scaled(const YarnParams& params, double gamma);
 double yarn_energy(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const Eigen::Matrix3Xd& points,
                    Eigen::Matrix3Xd& gradient, const Eigen::Matrix3Xd* velocities = nullptr, Eigen::Matrix3Xd* damping = nullptr);
 
+/// yarn_energy kept per segment between evaluations: a segment's share is computed again only when one of
+/// its control points, a point of a contact partner or its list of partners changed since the last
+/// evaluation. The sums run over every segment in a fixed order, so the numbers are those of yarn_energy
+/// bit for bit; what a step costs falls with the points that stay put (the active set).
+class YarnForces {
+public:
+  YarnForces(const YarnSystem& system, const YarnParams& params);
+  /// The contact pairs of the evaluations to come; segments whose partners differ from the last set's are
+  /// computed again. `pairs` must live until the next call.
+  void set_pairs(const ContactPairs& pairs);
+  /// Everything is computed at the next evaluation (after a jump of the state: a rollback, a new run).
+  void invalidate() { m_valid = false; }
+  /// yarn_energy at `points` (with `velocities`: also the damping). `changed`: per control point, whether its
+  /// position (or, with velocities, its velocity) may differ from the last evaluation's; null: every point.
+  double evaluate(const Eigen::Matrix3Xd& points, const std::vector<char>* changed, Eigen::Matrix3Xd& gradient,
+                  const Eigen::Matrix3Xd* velocities = nullptr, Eigen::Matrix3Xd* damping = nullptr);
+  /// Segments whose share the last evaluation computed (the others were kept).
+  long computed_segments() const { return m_computed; }
+
+private:
+  using V = model::Vec3<double>;
+  const YarnSystem& m_system;
+  YarnParams m_params;
+  const ContactPairs* m_pairs = nullptr;
+  std::vector<int> m_last_start, m_last_partner;  ///< the pairs the kept shares were computed with
+  std::vector<char> m_new_partners;               ///< per segment: its partners changed since
+  std::vector<V> m_pos, m_vel;                    ///< contact samples (yarn_segment.hpp SampleView)
+  std::vector<double> m_weight, m_arc;
+  std::vector<std::array<V, 4>> m_grad, m_damp;   ///< per segment: gradient and damping on its four points
+  std::vector<double> m_energy;                   ///< per segment
+  bool m_valid = false, m_damped = false;
+  long m_computed = 0;
+};
+
 enum class YarnMethod {
   Euler,  ///< semi-implicit Euler with the per-sample step bound of Leaf eq. 2 (Leaf Algorithm 1)
   Fire,   ///< FIRE (Bitzek et al. 2006), a quasi-static descent with inertia; every point clamped to ε r
@@ -65,6 +101,7 @@ struct YarnRelaxOptions {
   long max_steps = 20000;
   double max_seconds = 0;       ///< wall-time cap, 0 for none
   bool audit = true;            ///< run the topology auditor on every step (pull_through_events)
+  ActiveSetOptions active_set;  ///< converged points stop being integrated (CPU only)
   std::filesystem::path checkpoint;  ///< written atomically every checkpoint_every steps / minutes
   long checkpoint_every = 0;
   double checkpoint_minutes = 0;
@@ -93,6 +130,7 @@ struct YarnStepLog {
   double time_step = 0, moved = 0;  ///< moved: the largest distance a point of the yarn moved [mm]
   long contacts = 0, guard_hits = 0, held_points = 0;
   long crossings = 0;  ///< centreline crossings the auditor found in this step
+  long awake = 0;      ///< control points integrated in this step (all of them without the active set)
 };
 
 /// Outcome of a run; not converging is a result, not an exception.
@@ -105,6 +143,7 @@ struct YarnRelaxReport {
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run
   long rollbacks = 0, contact_rebuilds = 0;
+  ActiveSetCounters active;     ///< with the active set: what it did
   std::string backend = "cpu";  ///< "cpu", or "cuda: " and the device's name
 };
 

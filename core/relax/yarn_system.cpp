@@ -125,6 +125,28 @@ PositionKey position_key(const Eigen::Vector3d& p) {
   return {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4)};
 }
 
+void follow_placed(const mesh::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points) {
+  for (int c = 0; c < yarn.curves(); ++c) {
+    const int begin = yarn.curve_start[c], end = yarn.curve_start[c + 1];
+    // The nearest placed point before each point, then after it where that is strictly nearer.
+    std::vector<int> nearest(end - begin, -1);
+    for (int p = begin, last = -1; p < end; ++p) {
+      if (placed[p]) last = p;
+      else nearest[p - begin] = last;
+    }
+    for (int p = end - 1, next = -1; p >= begin; --p) {
+      if (placed[p]) next = p;
+      else if (next >= 0 && (nearest[p - begin] < 0 || next - p < p - nearest[p - begin])) nearest[p - begin] = next;
+    }
+    for (int p = begin; p < end; ++p) {
+      if (placed[p]) continue;
+      const int q = nearest[p - begin];
+      points.col(p) = base.col(p);
+      if (q >= 0) points.col(p) += points.col(q) - base.col(q);
+    }
+  }
+}
+
 mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>& keep, std::vector<int>& index) {
   const int n = static_cast<int>(in.points.size());
   mesh::YarnCurves out;

@@ -58,6 +58,11 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0
 /// pieces keep their order. `index`: per input point its index in the result, or -1.
 mesh::YarnCurves cut_curves(const mesh::YarnCurves& curves, const std::vector<char>& keep, std::vector<int>& index);
 
+/// Points that are not `placed` move as the nearest placed point of their yarn (by count of points along it,
+/// the earlier one on a tie): to their position in `base` plus that point's move from `base` into `points`.
+/// On a yarn with no placed point they take their `base` position.
+void follow_placed(const mesh::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points);
+
 /// A point's position rounded to 0.1 µm. Emission puts the same points at the same places, so this matches
 /// points across emissions: a tiling and its periodic patch, a garment before and after an edit.
 using PositionKey = std::tuple<long long, long long, long long>;
