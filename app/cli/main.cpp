@@ -20,6 +20,7 @@
 #include "cuda/device.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
+#include "relax/yarn_standin.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
 #include "relax/yarn_io.hpp"
@@ -199,6 +200,13 @@ int main(int argc, char** argv) {
   ry->add_option("--rings", ry_local.rings, "with --warm-start: rings of stitches around the changed ones that relax (grown while the outermost moves)")
       ->capture_default_str();
   ry->add_option("--halo", ry_local.halo, "with --warm-start: rings beyond those, held in place")->capture_default_str();
+  bool ry_stand_in = false;
+  relax::StandInOptions ry_stand_in_options;
+  ry->add_flag("--stand-in", ry_stand_in,
+               "a fast preview, not a relaxation: each stitch type's periodic patch relaxed and mapped over the faces where the garment is that type; "
+               "the output is marked as a preview");
+  ry->add_option("--stand-in-min-faces", ry_stand_in_options.min_faces, "with --stand-in: fewest faces of a stitch type for it to get a patch")
+      ->capture_default_str();
 
   // skein pattern
   auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");
@@ -561,6 +569,46 @@ int main(int argc, char** argv) {
         }
         spdlog::warn("warm start: the splice would pass yarn through yarn at {} places; relaxing the whole garment from its emission instead",
                      local.splice_crossings);
+      }
+      if (ry_stand_in) {
+        if (!is_project(ry_in)) throw Error(ry_in, "", "--stand-in maps patches over a project's stitch faces: give a .skein project");
+        if (!ry_resume.empty()) throw Error("", "--stand-in", "does not go with --resume");
+        const auto project = mesh::read_project(ry_in);
+        const auto& library = ry_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(ry_stitches);
+        relax::StandInReport stand_in;
+        const Eigen::Matrix3Xd points =
+            relax::stand_in_preview(*project.stitch, yarn, library, project.stitch_size, ry_options, ry_stand_in_options, stand_in);
+        // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
+        const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
+        auto probe = ry_options;
+        probe.max_steps = 0;
+        probe.audit = false;
+        probe.checkpoint.clear();
+        probe.checkpoint_every = 0;
+        probe.checkpoint_minutes = 0;
+        auto state = relax::initial_state(system, probe);
+        state.points = points;
+        const double energy = relax::make_cpu_yarn_relaxer(system, targets, probe)->run(state).energy;
+        const long crossings = static_cast<long>(relax::TopologyAuditor(system).crossings(system.points, points).size());
+        const auto out = relax::with_points(yarn, points);
+        write_yarn(out, ry_out, true);
+        spdlog::info("stand-in preview (not a relaxation) in {:.2f} s: {} stitch types, {} of {} control points placed from their patches, {} following "
+                     "their yarn; {} crossings on the way from the emission; wrote {}",
+                     stand_in.seconds, stand_in.types.size(), stand_in.placed, out.points.size(), stand_in.following, crossings, ry_out);
+        if (!ry_report.empty()) {
+          json types = json::array();
+          for (const auto& t : stand_in.types)
+            types.push_back({{"type", t.type}, {"faces", t.faces}, {"patch_steps", t.patch_steps}, {"patch_converged", t.converged},
+                             {"patch_seconds", t.patch_seconds}});
+          write_json({{"input", ry_in}, {"preview", "stand-in"}, {"wall_seconds", stand_in.seconds}, {"energy", energy},
+                      {"control_points", out.points.size()}, {"pull_through_events", crossings},
+                      {"stand_in", {{"types", types}, {"placed_points", stand_in.placed}, {"following_points", stand_in.following},
+                                    {"taken_back_points", stand_in.taken_back}}},
+                      {"yarn", yarn_json(out)}},
+                     ry_report);
+        }
+        if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+        return 0;
       }
       const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",

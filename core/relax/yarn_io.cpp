@@ -40,7 +40,7 @@ Eigen::Vector3d catmull_rom(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1
 
 }  // namespace
 
-void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path) {
+void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path, bool preview) {
   write_file_atomically(
       path,
       [&](std::ostream& out) {
@@ -52,7 +52,7 @@ void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path) {
         h.up_direction = 1;  // y up
         h.curve_count = static_cast<std::uint64_t>(yarn.curves());
         h.total_points = yarn.points.size();
-        std::snprintf(h.info, sizeof h.info, "skein yarn, radius %.9g mm", yarn.radius);
+        std::snprintf(h.info, sizeof h.info, "skein %s, radius %.9g mm", preview ? "preview" : "yarn", yarn.radius);
         out.write(reinterpret_cast<const char*>(&h), sizeof h);
         for (int c = 0; c < yarn.curves(); ++c) {
           const std::int32_t n = yarn.curve_size(c) * (yarn.closed[c] ? -1 : 1);
@@ -117,9 +117,9 @@ YarnCurves read_bcc(const std::filesystem::path& path) {
   return y;
 }
 
-void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path) {
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "# skein yarn: " << yarn.curves() << " curves, " << yarn.points.size() << " control points, radius " << yarn.radius << " mm\n";
+    out << (preview ? "# skein preview: " : "# skein yarn: ") << yarn.curves() << " curves, " << yarn.points.size() << " control points, radius " << yarn.radius << " mm\n";
     char buf[96];
     for (const auto& p : yarn.points) {
       std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", p.x(), p.y(), p.z());

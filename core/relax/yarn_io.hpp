@@ -11,14 +11,16 @@ using mesh::YarnCurves;
 
 /// Cem Yuksel's binary curve collection (.bcc): a 64-byte header ("BCC", 0x44, "C0" = Catmull-Rom, 3
 /// dimensions, up axis, uint64 curve count, uint64 point count, 40 bytes of text), then per curve an int32
-/// point count (negative for a closed loop) and its points as float xyz. Written atomically.
-void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path);
+/// point count (negative for a closed loop) and its points as float xyz. Written atomically. `preview`: the
+/// text says "skein preview" instead of "skein yarn" (yarn placed for a preview, not relaxed).
+void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path, bool preview = false);
 /// Reads a .bcc written by skein or any tool of that layout; per-point face and type are unknown (-1).
 /// Throws skein::Error naming the file, the byte offset and the rule for malformed files.
 YarnCurves read_bcc(const std::filesystem::path& path);
 
 /// OBJ polylines (`l` records, one per curve; closed curves repeat their first point), as Blender imports them.
-void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path);
+/// `preview`: the first comment says "skein preview" instead of "skein yarn".
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview = false);
 
 /// A tube mesh around the Catmull-Rom curves, for any renderer.
 struct TubeOptions {
