@@ -220,6 +220,34 @@ TEST(Cli, RelaxYarnWarmStartRelaxesOnlyWhatAnEditChanged) {
   EXPECT_FALSE(std::filesystem::exists(none));
 }
 
+TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
+  ScratchDir dir;
+  const auto project = dir / "swatch.skein", preview = dir / "preview.bcc", report = dir / "r.json";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project.string()).status, 0);
+  auto r = run_skein("relax-yarn " + project.string() + " --stand-in --stand-in-min-faces 4 -o " + preview.string() + " --report " + report.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("stand-in preview (not a relaxation)"), std::string::npos) << r.output;
+  const auto json = slurp(report);
+  for (const char* key : {"\"preview\": \"stand-in\"", "\"pull_through_events\": 0", "\"type\": \"k\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  EXPECT_NE(slurp(preview).find("skein preview, radius"), std::string::npos);
+  // Stand-ins map over stitch faces: bare yarn has none.
+  const auto bare = dir / "bare.bcc", none = dir / "none.bcc";
+  ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + bare.string()).status, 0);
+  r = run_skein("relax-yarn " + bare.string() + " --stand-in -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--stand-in maps patches over a project's stitch faces"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(none));
+  // The active set: a relaxation that reports what it did, and only on the CPU.
+  const auto relaxed = dir / "relaxed.bcc", active = dir / "active.json";
+  r = run_skein("relax-yarn " + project.string() + " --active-set --no-audit -o " + relaxed.string() + " --report " + active.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(active).find("\"integrated_share\""), std::string::npos);
+  r = run_skein("relax-yarn " + project.string() + " --active-set --backend cuda -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("the active set runs on the CPU only"), std::string::npos) << r.output;
+}
+
 TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   ScratchDir dir;
   const auto bad = dir.write("bad.ckp", "SKEINCKP and then nothing useful");
