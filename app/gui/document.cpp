@@ -274,6 +274,16 @@ void Document::set_yarn(mesh::YarnCurves yarn, bool relaxed, const QString& text
   EditState next = m_state;
   next.yarn = std::move(yarn);
   next.yarn_relaxed = relaxed;
+  next.yarn_preview = false;
+  apply(text, std::move(next));
+}
+
+void Document::set_yarn_preview(mesh::YarnCurves yarn, const QString& text) {
+  require_stitch();
+  EditState next = m_state;
+  next.yarn = std::move(yarn);
+  next.yarn_relaxed = false;
+  next.yarn_preview = true;
   apply(text, std::move(next));
 }
 

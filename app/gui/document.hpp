@@ -31,6 +31,7 @@ struct EditState {
   std::optional<RestSize> rest;         ///< after mesh relaxation; dropped with the stitch mesh it belongs to
   std::optional<mesh::YarnCurves> yarn;  ///< emitted (or relaxed) from the current stitch mesh
   bool yarn_relaxed = false;
+  bool yarn_preview = false;  ///< the yarn is a stand-in preview (relax::stand_in_preview), neither emitted nor relaxed
   /// The last relaxed yarn and the stitch mesh it was emitted from, kept through stitch edits: relaxing the
   /// yarn again starts from it and relaxes only the stitches changed since (relax::relax_locally). Dropped
   /// when the stitch mesh is made anew or relaxed (every stitch moves).
@@ -89,6 +90,8 @@ public:
   // Results of the relaxations and of yarn emission (undoable too)
   void set_relaxed_mesh(mesh::StitchMesh relaxed, const RestSize& rest);
   void set_yarn(mesh::YarnCurves yarn, bool relaxed, const QString& text);
+  /// The yarn shown as a stand-in preview, as one undo step.
+  void set_yarn_preview(mesh::YarnCurves yarn, const QString& text);
 
   /// Makes `next` the state, as one undo step named `text` (what the other edits call).
   void apply(const QString& text, EditState next);

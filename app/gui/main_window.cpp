@@ -21,6 +21,7 @@
 #include "common/error.hpp"
 #include "skein/config.hpp"
 #include "relax/yarn_io.hpp"
+#include "relax/yarn_standin.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/tessellation.hpp"
@@ -29,6 +30,11 @@
 
 namespace skein::gui {
 namespace {
+
+/// The yarn of the state's stitch mesh as emitted, at a tenth of the stitch width.
+mesh::YarnCurves emitted_yarn(const EditState& state) {
+  return mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = 0.1 * state.stitch_size.width});
+}
 
 std::filesystem::path fs_path(const QString& path) { return std::filesystem::path(path.toStdString()); }
 
@@ -245,6 +251,7 @@ void MainWindow::build_actions() {
   add(relax, tr("Relax &stitch mesh"), "relaxMesh", [this] { relax_mesh(); }, QKeySequence(tr("Ctrl+R")), true);
   add(relax, tr("&Emit yarn"), "emitYarn", [this] { emit_yarn(); }, QKeySequence(tr("Ctrl+E")), true);
   add(relax, tr("Relax &yarn"), "relaxYarn", [this] { relax_yarn(); }, QKeySequence(tr("Ctrl+Y")), true);
+  add(relax, tr("Pre&view yarn (stand-in)"), "previewYarn", [this] { preview_yarn(); }, {}, true);
   m_pause = add(relax, tr("&Pause"), "pause", [this] { pause_or_resume(); });
   m_stop = add(relax, tr("S&top"), "stop", [this] { stop_job(); });
   m_pause->setEnabled(false);
@@ -620,9 +627,37 @@ bool MainWindow::emit_yarn() {
     struct Restore {
       ~Restore() { QApplication::restoreOverrideCursor(); }
     } restore;
-    mesh::EmitOptions options;
-    options.yarn_radius = 0.1 * state.stitch_size.width;
-    m_doc.set_yarn(mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), options), false, tr("Emit yarn"));
+    m_doc.set_yarn(emitted_yarn(state), false, tr("Emit yarn"));
+  });
+  if (ok) set_layer(Layer::Yarn);
+  return ok;
+}
+
+bool MainWindow::preview_yarn() {
+  if (job_running()) return false;
+  const bool ok = attempt([&] {
+    const auto& state = m_doc.state();
+    if (!state.stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    struct Restore {
+      ~Restore() { QApplication::restoreOverrideCursor(); }
+    } restore;
+    const auto yarn = emitted_yarn(state);
+    relax::YarnRelaxOptions options;
+    options.audit = false;  // the preview is certified on its own straight path from the emission
+    relax::StandInReport report;
+    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), state.stitch_size, options, {}, report);
+    // Not a relaxation: Relax yarn starts from the emission.
+    m_doc.set_yarn_preview(relax::with_points(yarn, points), tr("Preview yarn"));
+    QStringList types;
+    for (const auto& t : report.types) types << QString::fromStdString(t.type);
+    m_job_label->setText(report.types.empty()
+                             ? tr("stand-in preview: no stitch type covers a region of %1 stitches; the yarn is as emitted").arg(relax::StandInOptions{}.min_faces)
+                             : tr("stand-in preview (not a relaxation) in %1 s: %2 of %3 control points from the patches of %4")
+                                   .arg(report.seconds, 0, 'f', 1)
+                                   .arg(report.placed)
+                                   .arg(points.cols())
+                                   .arg(types.join(", ")));
   });
   if (ok) set_layer(Layer::Yarn);
   return ok;
@@ -636,7 +671,9 @@ bool MainWindow::relax_yarn() {
     if (!state.yarn) throw Error("emit the yarn first (Relax > Emit yarn)");
     if (state.yarn_relaxed) throw Error("the yarn is relaxed already; emit it again to start over");
     m_job_is_yarn = true;
-    auto* job = new YarnRelaxJob(*state.yarn, *state.stitch, relax::YarnRelaxOptions{}, m_backend);
+    // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
+    const auto start = state.yarn_preview ? emitted_yarn(state) : *state.yarn;
+    auto* job = new YarnRelaxJob(start, *state.stitch, relax::YarnRelaxOptions{}, m_backend);
     // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn.
     if (state.previous) job->warm_start(state.previous->stitch, state.previous->relaxed);
     start_job(job);

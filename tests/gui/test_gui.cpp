@@ -340,6 +340,21 @@ private slots:
     QVERIFY(!doc.state().previous.has_value());
   }
 
+  void yarn_preview_maps_stand_ins_without_relaxing() {
+    MainWindow w;
+    QVERIFY(swatch_yarn_shown(w));
+    const auto emitted = *w.document().state().yarn;
+    QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
+    const auto& state = w.document().state();
+    QVERIFY(state.yarn && !state.yarn_relaxed);
+    QCOMPARE(state.yarn->points.size(), emitted.points.size());
+    QVERIFY(state.yarn->points != emitted.points);
+    QVERIFY2(w.job_text().contains("stand-in preview (not a relaxation)") && w.job_text().contains("patches of k"), qPrintable(w.job_text()));
+    // One undo step back to the emitted yarn.
+    action(w, "undo")->trigger();
+    QVERIFY(w.document().state().yarn->points == emitted.points);
+  }
+
   void yarn_relaxation_pauses_resumes_and_stops() {
     MainWindow w;
     QVERIFY(swatch_yarn_shown(w));
