@@ -9,7 +9,9 @@
 #   periodic   every bundled knit's periodic patch against the centre of a relaxed 5 x 5 tiling: cost and RMS
 #   local      the mitten with 0.2 to 1 % of its stitches repainted: local re-relaxation against a full one
 #              (issue 10; bench/local_runs.sh)
-# Usage: bench/charts.sh [speed|stability|periodic|local|all|plots]   (plots: redraw all from the CSVs)
+#   active     the mitten relaxed from its emission with and without the active set: residual against time,
+#              and the share of points integrated per step (issue 10)
+# Usage: bench/charts.sh [speed|stability|periodic|local|active|all|plots]   (plots: redraw all from the CSVs)
 # Env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per speed run (300 and 180).
 # Writes docs/images/charts/*.png and the measured data beside them as CSV.
 set -euo pipefail
@@ -234,13 +236,45 @@ unset multiplot
 EOF
 }
 
+active_set() {
+  "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
+  "$skein" -q relax-mesh "$tmp/mitten.skein" -o "$tmp/mitten-relaxed.skein"
+  relax "$tmp/mitten-relaxed.skein" "$out/active-full.csv" --no-audit
+  relax "$tmp/mitten-relaxed.skein" "$out/active-set.csv" --no-audit --active-set
+  active_plot
+}
+
+active_plot() {
+  local points=46337
+  gnuplot <<EOF
+$(png_head 1300,900 12 "$out/active-set.png")
+set datafile separator ','
+set multiplot layout 2,1 title "The mitten (46,337 points) relaxed from its emission, every point integrated or with the active set (FIRE, 2 threads)"
+set grid
+set xlabel 'wall time [s]'
+set logscale y
+set ylabel '|∇E| / |∇E_0|'
+set yrange [0.005:10]
+plot '$out/active-full.csv' every ::1 using 10:3 with lines lw 2 lc rgb '0x1e88e5' title 'every point', \
+     '$out/active-set.csv' every ::1 using 10:3 with lines lw 2 lc rgb '0xfb8c00' title 'active set', \
+     0.01 with lines dt 2 lc rgb '0x757575' title 'tolerance'
+unset logscale y
+set xlabel 'step'
+set ylabel 'points integrated [%]'
+set yrange [0:105]
+plot '$out/active-set.csv' every ::1 using 1:(100.0 * \$11 / $points) with lines lw 2 lc rgb '0xfb8c00' title 'active set'
+unset multiplot
+EOF
+}
+
 case $what in
   speed) speed ;;
-  plots) speed_plots; stability_plot; periodic_plot; local_plot ;;
+  plots) speed_plots; stability_plot; periodic_plot; local_plot; active_plot ;;
   stability) stability ;;
   periodic) periodic ;;
   local) local_relaxation ;;
-  all) periodic; stability; speed; local_relaxation ;;
-  *) echo "usage: bench/charts.sh [speed|stability|periodic|local|all|plots]" >&2; exit 2 ;;
+  active) active_set ;;
+  all) periodic; stability; speed; local_relaxation; active_set ;;
+  *) echo "usage: bench/charts.sh [speed|stability|periodic|local|active|all|plots]" >&2; exit 2 ;;
 esac
 echo "wrote $out/"
