@@ -361,6 +361,8 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   msg = error_for("type.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"max_steps": "many"}})");
   EXPECT_NE(msg.find("key 'relax_yarn.max_steps'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("expected a whole number, found \"many\""), std::string::npos) << msg;
+  msg = error_for("active.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"active_set": "yes"}})");
+  EXPECT_NE(msg.find("key 'relax_yarn.active_set'"), std::string::npos) << msg;
   msg = error_for("method.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"method": "rk4"}})");
   EXPECT_NE(msg.find("expected \"fire\" or \"euler\", found \"rk4\""), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");
