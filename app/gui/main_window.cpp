@@ -618,7 +618,7 @@ bool MainWindow::relax_mesh() {
   });
 }
 
-bool MainWindow::emit_yarn() {
+bool MainWindow::stitch_yarn_action(const std::function<void(const EditState&)>& body) {
   if (job_running()) return false;
   const bool ok = attempt([&] {
     const auto& state = m_doc.state();
@@ -627,21 +627,18 @@ bool MainWindow::emit_yarn() {
     struct Restore {
       ~Restore() { QApplication::restoreOverrideCursor(); }
     } restore;
-    m_doc.set_yarn(emitted_yarn(state), false, tr("Emit yarn"));
+    body(state);
   });
   if (ok) set_layer(Layer::Yarn);
   return ok;
 }
 
+bool MainWindow::emit_yarn() {
+  return stitch_yarn_action([&](const EditState& state) { m_doc.set_yarn(emitted_yarn(state), false, tr("Emit yarn")); });
+}
+
 bool MainWindow::preview_yarn() {
-  if (job_running()) return false;
-  const bool ok = attempt([&] {
-    const auto& state = m_doc.state();
-    if (!state.stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
-    QApplication::setOverrideCursor(Qt::WaitCursor);
-    struct Restore {
-      ~Restore() { QApplication::restoreOverrideCursor(); }
-    } restore;
+  return stitch_yarn_action([&](const EditState& state) {
     const auto yarn = emitted_yarn(state);
     relax::YarnRelaxOptions options;
     options.audit = false;  // the preview is certified on its own straight path from the emission
@@ -659,8 +656,6 @@ bool MainWindow::preview_yarn() {
                                    .arg(points.cols())
                                    .arg(types.join(", ")));
   });
-  if (ok) set_layer(Layer::Yarn);
-  return ok;
 }
 
 bool MainWindow::relax_yarn() {

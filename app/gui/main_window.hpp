@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 
 #include <memory>
 #include <vector>
@@ -97,6 +98,9 @@ private:
   /// Runs an edit; a skein::Error (or any exception) becomes an error message. True when it went through.
   template <class F>
   bool attempt(F&& edit);
+  /// A foreground action on the yarn of the stitch mesh: refused while a job runs or without a stitch mesh,
+  /// under a wait cursor; the yarn layer shows afterwards.
+  bool stitch_yarn_action(const std::function<void(const EditState&)>& body);
 
   void on_pressed(const Hit& hit, Qt::KeyboardModifiers modifiers);
   void on_dragged(const Hit& hit, Qt::KeyboardModifiers modifiers);
