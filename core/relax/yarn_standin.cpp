@@ -156,7 +156,9 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
     if (yarn.point_face[p] >= 0 && yarn.point_face[p] < static_cast<int>(stitch.faces.size())) points_of[yarn.point_face[p]].push_back(p);
   report = {};
   const double r = yarn.radius;
-  for (const auto& [type, faces] : by_type) {
+  for (const auto& region : by_type) {
+    const std::string& type = region.first;
+    const std::vector<int>& faces = region.second;  // a plain reference: OpenMP regions cannot capture a structured binding
     if (static_cast<int>(faces.size()) < stand_in.min_faces) continue;
     const auto t0 = std::chrono::steady_clock::now();
     // The patch at the region's mean stitch size: its yarn as long as the region's.
