@@ -577,7 +577,7 @@ int main(int argc, char** argv) {
         const auto& library = ry_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(ry_stitches);
         relax::StandInReport stand_in;
         const Eigen::Matrix3Xd points =
-            relax::stand_in_preview(*project.stitch, yarn, library, project.stitch_size, ry_options, ry_stand_in_options, stand_in);
+            relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
         // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
         const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
         auto probe = ry_options;

@@ -643,7 +643,7 @@ bool MainWindow::preview_yarn() {
     relax::YarnRelaxOptions options;
     options.audit = false;  // the preview is certified on its own straight path from the emission
     relax::StandInReport report;
-    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), state.stitch_size, options, {}, report);
+    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, {}, report);
     // Not a relaxation: Relax yarn starts from the emission.
     m_doc.set_yarn_preview(relax::with_points(yarn, points), tr("Preview yarn"));
     QStringList types;

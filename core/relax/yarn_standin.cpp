@@ -136,11 +136,10 @@ void StandInOptions::validate() const {
 }
 
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
-                                  const mesh::StitchSize& size, const YarnRelaxOptions& options, const StandInOptions& stand_in,
+                                  const YarnRelaxOptions& options, const StandInOptions& stand_in,
                                   StandInReport& report) {
   const auto started = std::chrono::steady_clock::now();
   stand_in.validate();
-  size.validate();
   const int n = static_cast<int>(yarn.points.size());
   if (static_cast<int>(yarn.point_face.size()) != n) throw Error("", "stand-in", "the yarn does not say which face each point was emitted for");
   const auto eligible = eligible_faces(stitch);
@@ -168,7 +167,7 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
       mean.width += 0.5 * ((q.c[1] - q.c[0]).norm() + (q.c[2] - q.c[3]).norm()) / static_cast<double>(faces.size());
       mean.height += 0.5 * ((q.c[3] - q.c[0]).norm() + (q.c[2] - q.c[1]).norm()) / static_cast<double>(faces.size());
     }
-    spdlog::info("stand-in {}: mean stitch {:.3f} x {:.3f} mm (nominal {:.3f} x {:.3f})", type, mean.width, mean.height, size.width, size.height);
+    spdlog::info("stand-in {}: mean stitch {:.3f} x {:.3f} mm", type, mean.width, mean.height);
     const auto relaxed = relax_stitch(type, library, mean, r, options);
     StandInType entry{type, static_cast<int>(faces.size()), relaxed.steps, relaxed.converged,
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};

@@ -35,18 +35,19 @@ struct StandInReport {
 };
 
 /// A preview of a garment's relaxed yarn from periodic stand-ins (issue 10; Leaf 2018 §5): where the garment
-/// is one stitch type over a region, that type's 1 x 1 periodic patch is relaxed once (relax::periodic_patch,
-/// with `options`) and its relaxed yarn mapped over the region's faces, so the garment itself is not relaxed.
+/// is one stitch type over a region, that type's 1 x 1 periodic patch, at the region's mean stitch width and
+/// height, is relaxed once (relax::periodic_patch, with `options` and the patch-tracking forces) and its relaxed
+/// yarn mapped over the region's faces, so the garment itself is not relaxed.
 /// A face stands in when it is a 1-1 quad inside the garment (every edge shared, no cable mark) whose faces
 /// around every corner have its type. On such a face each emitted point is found in the face's bilinear frame
 /// (u, v along course and wale, h along the normal), matched to the patch's real point at the same place of
 /// its stitch (modulo the period) and moved as that point moved in relaxation, the move carried from the
 /// patch's frame to the face's. Every other point follows the nearest placed point of its yarn
 /// (follow_placed). On the straight path from the emission to the preview no yarn passes through another (the
-/// topology auditor): faces whose points would are taken back to following. `yarn`: the garment's emitted yarn (mesh::emit_yarn of `stitch` with `library`);
-/// `size`: the nominal stitch size the patch is made with. Returns the positions [mm].
+/// topology auditor): faces whose points would are taken back to following. `yarn`: the garment's emitted yarn
+/// (mesh::emit_yarn of `stitch` with `library`). Returns the positions [mm].
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
-                                  const mesh::StitchSize& size, const YarnRelaxOptions& options, const StandInOptions& stand_in,
+                                  const YarnRelaxOptions& options, const StandInOptions& stand_in,
                                   StandInReport& report);
 
 }  // namespace skein::relax

@@ -173,7 +173,7 @@ TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatc
   StandInOptions stand_in;
   stand_in.min_faces = 1;
   StandInReport report;
-  const auto preview = stand_in_preview(sheet, yarn, library, size, options, stand_in, report);
+  const auto preview = stand_in_preview(sheet, yarn, library, options, stand_in, report);
   ASSERT_EQ(report.types.size(), 1u);
   EXPECT_EQ(report.types[0].faces, 6 * 6);  // the faces inside the sheet
   EXPECT_GT(report.placed, 0);
