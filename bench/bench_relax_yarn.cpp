@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <numeric>
 #include <string>
 
 #include "relax/pull_through_guard.hpp"
@@ -17,15 +18,16 @@ using namespace skein;
 const std::string kModels = SKEIN_MODELS_DIR;
 const char* kNames[] = {"swatch", "mitten", "sweater"};
 
-const relax::YarnSystem& system_of(int model) {
-  static std::map<int, relax::YarnSystem> cache;
-  if (!cache.count(model)) {
+/// The model's emitted yarn; `spacing` > 0: adaptive contact samples (relax::ContactSampling).
+const relax::YarnSystem& system_of(int model, double spacing = 0) {
+  static std::map<std::pair<int, double>, relax::YarnSystem> cache;
+  if (!cache.count({model, spacing})) {
     const auto m = mesh::load_mesh(kModels + "/" + kNames[model] + ".obj");
     const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
     const auto s = mesh::tessellate(m, l, mesh::initial_values(m, l, {}));
-    cache.emplace(model, relax::make_yarn_system(mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {})));
+    cache.emplace(std::make_pair(model, spacing), relax::make_yarn_system(mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), {}), 1.0, {}, {spacing}));
   }
-  return cache.at(model);
+  return cache.at({model, spacing});
 }
 
 void label(benchmark::State& state, const relax::YarnSystem& system) {
@@ -35,13 +37,15 @@ void label(benchmark::State& state, const relax::YarnSystem& system) {
                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
 }
 
+/// range(1): contact spacing in tenths of r (0: Leaf's rule).
 void forces(benchmark::State& state) {
-  const auto& system = system_of(static_cast<int>(state.range(0)));
+  const auto& system = system_of(static_cast<int>(state.range(0)), state.range(1) / 10.0);
   const relax::YarnRelaxOptions options;
   const auto pairs = relax::find_contact_pairs(system, system.points, options.contact_margin * system.radius);
   Eigen::Matrix3Xd grad, damping, velocities = Eigen::Matrix3Xd::Zero(3, system.num_points());
   for (auto _ : state) benchmark::DoNotOptimize(relax::yarn_energy(system, options.params, pairs, system.points, grad, &velocities, &damping));
   state.counters["contact_pairs"] = static_cast<double>(pairs.pairs());
+  state.counters["contact_samples"] = system.sample_start.back() + system.contact_samples.back();
   label(state, system);
 }
 
@@ -69,17 +73,25 @@ void guard(benchmark::State& state) {
   label(state, system);
 }
 
+/// range(1): the polylines' largest deviation from the curves in hundredths of r. Counters: polyline edges per
+/// segment, and the deviation bound (h² max |y''| / 8) that 4 edges on every segment would leave at the worst one.
 void audit(benchmark::State& state) {
   const auto& system = system_of(static_cast<int>(state.range(0)));
   const Eigen::Matrix3Xd after = system.points + Eigen::Matrix3Xd::Random(3, system.num_points()) * (0.05 * system.radius);
-  relax::TopologyAuditor auditor(system);
+  const double deviation = state.range(1) / 100.0;
+  relax::TopologyAuditor auditor(system, deviation);
   for (auto _ : state) benchmark::DoNotOptimize(auditor.crossings(system.points, after).size());
+  const auto edges = auditor.edges_per_segment(system.points, after);
+  const auto bounds = auditor.second_derivative_bounds(system.points, after);
+  const double worst = *std::max_element(bounds.begin(), bounds.end()) / (8 * 4 * 4) / system.radius;
+  state.counters["edges_per_segment"] = static_cast<double>(std::accumulate(edges.begin(), edges.end(), 0L)) / edges.size();
+  state.counters["fixed4_worst_deviation_r"] = worst;
   label(state, system);
 }
 }  // namespace
 
-BENCHMARK(forces)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(forces)->ArgsProduct({{0, 1, 2}, {0, 25}})->Unit(benchmark::kMillisecond);
 BENCHMARK(contact_pairs)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(guard)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
-BENCHMARK(audit)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(audit)->ArgsProduct({{0, 1, 2}, {5, 10}})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -278,6 +278,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
     }
   json j = {{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
             {"control_points", system.num_points()}, {"segments", system.num_segments()},
+            {"contact_samples", system.sample_start.back() + system.contact_samples.back()}, {"contact_spacing_r", options.sampling.spacing},
             {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
             {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
             {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},

@@ -115,7 +115,7 @@ relax::MeshRelaxOptions mesh_options(const Keys& k) {
 }
 
 relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
-  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "active_set", "checkpoint_every",
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "active_set", "contact_spacing", "checkpoint_every",
           "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
   o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
@@ -127,6 +127,7 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
   o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);
   o.audit = k.flag("audit", true);
   o.active_set.enabled = k.flag("active_set", false);
+  o.sampling.spacing = k.number("contact_spacing", 0, 0, relax::ContactSampling::kMaxCoveringSpacing);
   // Step-based checkpoints by default: a resumed job then ends exactly as an uninterrupted one would.
   o.checkpoint_every = k.integer("checkpoint_every", 500, 0, 1L << 40);
   o.checkpoint_minutes = k.number("checkpoint_minutes", 0, 0, 1e6);
@@ -374,7 +375,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       auto options = *job.relax_yarn;
       options.interrupt = interrupt;
       options.checkpoint = checkpoint;
-      const auto system = relax::make_yarn_system(yarn, job.take_up);
+      const auto system = relax::make_yarn_system(yarn, job.take_up, {}, options.sampling);
       const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);
       auto state = relax::initial_state(system, options);
       if (resume && fs::exists(checkpoint)) {

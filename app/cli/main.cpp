@@ -192,6 +192,10 @@ int main(int argc, char** argv) {
   ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")->capture_default_str();
   ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
       ->capture_default_str();
+  ry->add_option("--contact-spacing", ry_options.sampling.spacing,
+                 "adaptive contact samples: the fewest per segment with no gap of yarn over this × r between two "
+                 "(at most 2√2 ≈ 2.828; 0: Leaf's odd count over L / 2r)")
+      ->capture_default_str();
   std::string ry_warm, ry_warm_project;
   relax::LocalRelaxOptions ry_local;
   ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
@@ -261,8 +265,9 @@ int main(int argc, char** argv) {
   std::string audit_before, audit_after;
   audit->add_option("BEFORE", audit_before, "yarn before (.bcc)")->required();
   audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
-  int audit_samples = 4;
-  audit->add_option("--samples", audit_samples, "polyline points per spline segment for the crossing test")->capture_default_str()->check(CLI::Range(1, 64));
+  double audit_deviation = 0.1;
+  audit->add_option("--deviation", audit_deviation, "the crossing test's polylines stay this close to the curves, × r (edges per segment from its curvature)")
+      ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
 
   // skein run
   auto* run_cmd = app.add_subcommand("run", "run a job file: the whole pipeline from a mesh to relaxed yarn, unattended (docs/jobs.md)");
@@ -579,7 +584,7 @@ int main(int argc, char** argv) {
         const Eigen::Matrix3Xd points =
             relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
         // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
-        const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
+        const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
         auto probe = ry_options;
         probe.max_steps = 0;
         probe.audit = false;
@@ -610,7 +615,7 @@ int main(int argc, char** argv) {
         if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
         return 0;
       }
-      const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch));
+      const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
                    system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
                    targets.boundary_loops.size(), targets.patches.size(), t.seconds());
@@ -743,7 +748,7 @@ int main(int argc, char** argv) {
         squares += d * d;
       }
       const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
-      const auto crossing_list = relax::TopologyAuditor(system, audit_samples).crossings(system.points, q1);
+      const auto crossing_list = relax::TopologyAuditor(system, audit_deviation).crossings(system.points, q1);
       const long crossings = static_cast<long>(crossing_list.size());
       const auto links_before = relax::linking_numbers(before), links_after = relax::linking_numbers(after);
       std::map<std::pair<int, int>, long> lk0, lk1;

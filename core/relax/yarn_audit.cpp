@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <omp.h>
 
+#include "common/error.hpp"
 #include "relax/segment_distance.hpp"
 
 namespace skein::relax {
@@ -82,7 +83,9 @@ bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3
   return false;
 }
 
-TopologyAuditor::TopologyAuditor(const YarnSystem& system, int samples) : m_system(system), m_samples(samples) {}
+TopologyAuditor::TopologyAuditor(const YarnSystem& system, double deviation) : m_system(system), m_deviation(deviation * system.radius) {
+  if (!(deviation > 0) || !std::isfinite(deviation)) throw Error("", "audit deviation", "must be positive, found " + std::to_string(deviation));
+}
 
 Vector3d TopologyAuditor::curve_point(const Eigen::Matrix3Xd& points, int segment, double t) const {
   // Catmull-Rom basis, written out here so that the auditor shares nothing with the relaxer.
@@ -92,13 +95,30 @@ Vector3d TopologyAuditor::curve_point(const Eigen::Matrix3Xd& points, int segmen
                 (t3 - t2) * points.col(sp[3]));
 }
 
-Eigen::Matrix3Xd TopologyAuditor::polyline_points(const Eigen::Matrix3Xd& points) const {
-  const int per = m_samples + 1;
-  Eigen::Matrix3Xd out(3, static_cast<long>(m_system.num_segments()) * per);
+std::vector<double> TopologyAuditor::second_derivative_bounds(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
+  std::vector<double> bounds(m_system.num_segments());
 #pragma omp parallel for schedule(static)
-  for (int s = 0; s < m_system.num_segments(); ++s)
-    for (int k = 0; k < per; ++k) out.col(static_cast<long>(s) * per + k) = curve_point(points, s, static_cast<double>(k) / m_samples);
-  return out;
+  for (int s = 0; s < m_system.num_segments(); ++s) {
+    // y'' of a cubic is linear in t, and linear in the control points along the move: its largest length
+    // over the segment and the move is at one of its ends in one of the two states.
+    const auto& sp = m_system.segment_points[s];
+    double largest = 0;
+    for (const Eigen::Matrix3Xd* points : {&before, &after}) {
+      const auto p = [&](int k) { return points->col(sp[k]); };
+      largest = std::max({largest, (2 * p(0) - 5 * p(1) + 4 * p(2) - p(3)).norm(), (-p(0) + 4 * p(1) - 5 * p(2) + 2 * p(3)).norm()});
+    }
+    bounds[s] = largest;
+  }
+  return bounds;
+}
+
+std::vector<int> TopologyAuditor::edges_per_segment(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
+  constexpr int kMostEdges = 64;
+  const auto bounds = second_derivative_bounds(before, after);
+  std::vector<int> edges(bounds.size());
+  for (size_t s = 0; s < bounds.size(); ++s)
+    edges[s] = std::clamp(static_cast<int>(std::ceil(std::sqrt(bounds[s] / (8 * m_deviation)))), 1, kMostEdges);
+  return edges;
 }
 
 bool TopologyAuditor::segments_meet_finely(int a, int b, const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, double tolerance) const {
@@ -127,12 +147,25 @@ bool TopologyAuditor::segments_meet_finely(int a, int b, const Eigen::Matrix3Xd&
 }
 
 std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
-  const Eigen::Matrix3Xd p0 = polyline_points(before), p1 = polyline_points(after);
-  const int per = m_samples + 1;
-  const long edges = static_cast<long>(m_system.num_segments()) * m_samples;
+  // Polylines: segment s has edges [first[s], first[s + 1]) and points [first[s] + s, first[s + 1] + s].
+  const int segments = m_system.num_segments();
+  const auto per = edges_per_segment(before, after);
+  std::vector<long> first(segments + 1, 0);
+  for (int s = 0; s < segments; ++s) first[s + 1] = first[s] + per[s];
+  const long edges = first[segments];
+  std::vector<int> segment_of(edges);
+  Eigen::Matrix3Xd p0(3, edges + segments), p1(3, edges + segments);
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < segments; ++s)
+    for (int k = 0; k <= per[s]; ++k) {
+      const double t = static_cast<double>(k) / per[s];
+      p0.col(first[s] + s + k) = curve_point(before, s, t);
+      p1.col(first[s] + s + k) = curve_point(after, s, t);
+      if (k < per[s]) segment_of[first[s] + k] = s;
+    }
   const auto ends = [&](long e) {
-    const long s = e / m_samples, k = e % m_samples;
-    return std::array<long, 2>{s * per + k, s * per + k + 1};
+    const long i = e + segment_of[e];
+    return std::array<long, 2>{i, i + 1};
   };
   // Swept boxes of the edges, bucketed in a grid whose cells are as wide as the widest box.
   // Two edges that both stay put cannot meet during the move: only pairs with a moving edge are tested.
@@ -178,7 +211,7 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
             const long f = sorted[i].second;
             // Each pair once: a pair of moving edges from its first edge, a moving edge and a still one from the moving one.
             if (f == e || (moving[f] && f < e) || !boxes[e].intersects(boxes[f]) ||
-                m_system.adjacent(static_cast<int>(e / m_samples), static_cast<int>(f / m_samples)))
+                m_system.adjacent(segment_of[e], segment_of[f]))
               continue;
             const auto [ei, ej] = ends(e);
             const auto [fi, fj] = ends(f);
@@ -186,7 +219,7 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
             const Vector3d b0[2] = {p0.col(fi), p0.col(fj)}, b1[2] = {p1.col(fi), p1.col(fj)};
             // A meeting of the coarse polylines is confirmed on 64 points per segment: where two centrelines
             // come closer than the coarse polylines' own error, the coarse edges can cross when the curves do not.
-            const int sa = static_cast<int>(e / m_samples), sb = static_cast<int>(f / m_samples);
+            const int sa = segment_of[e], sb = segment_of[f];
             if (edges_meet_during(a0, a1, b0, b1, tolerance) && segments_meet_finely(sa, sb, before, after, tolerance))
               found[omp_get_thread_num()].push_back({sa, sb, 0.5 * (a0[0] + b0[0])});
           }

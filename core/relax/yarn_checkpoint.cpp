@@ -61,6 +61,7 @@ std::uint64_t checkpoint_fingerprint(const YarnSystem& system, YarnMethod method
   h.add(system.curve_start.data(), system.curve_start.size() * sizeof(int));
   h.add(system.closed.data(), system.closed.size());
   h.add(system.rest_length.data(), system.rest_length.size() * sizeof(double));
+  h.add(system.contact_samples.data(), system.contact_samples.size() * sizeof(int));
   return h.value();
 }
 

@@ -104,7 +104,7 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
   // smaller and ask for a far smaller residual.
   double scale = 0;
   {
-    const YarnSystem whole = make_yarn_system(emitted, take_up, take_up_by_type);
+    const YarnSystem whole = make_yarn_system(emitted, take_up, take_up_by_type, options.sampling);
     YarnRelaxOptions probe = options;
     probe.max_steps = 0;
     probe.audit = false;
@@ -125,7 +125,7 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
     for (int p = 0; p < n; ++p)
       if (index[p] >= 0) global[index[p]] = p;
     const auto relaxes = [&](int p) { return owner[p] < 0 ? !splice.matched[p] : active[owner[p]] != 0; };
-    YarnSystem system = make_yarn_system(piece, take_up, take_up_by_type);  // rest lengths from the emission
+    YarnSystem system = make_yarn_system(piece, take_up, take_up_by_type, options.sampling);  // rest lengths from the emission
     const Eigen::Matrix3Xd start = system.points;
     for (int i = 0; i < system.num_points(); ++i) system.points.col(i) = points.col(global[i]);
     if (report.rounds == 0) {

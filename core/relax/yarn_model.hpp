@@ -78,6 +78,10 @@ template <class T> SKEIN_HD T simpson_weight(int k, int n) {
   return c * h / T(3);
 }
 
+/// Quadrature weight of contact sample k of n on [0, 1]: composite Simpson for odd n (Leaf 2018 §3.1), the
+/// trapezoid rule for n = 2, the fewest an adaptive segment gets (ContactSampling); the weights sum to 1.
+template <class T> SKEIN_HD T contact_weight(int k, int n) { return n == 2 ? T(0.5) : simpson_weight<T>(k, n); }
+
 /// Stiffnesses of the intrinsic terms (Leaf 2018 §3.1 and Appendix B).
 template <class T>
 struct IntrinsicParams {

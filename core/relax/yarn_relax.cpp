@@ -64,6 +64,7 @@ void YarnRelaxOptions::validate() const {
   check_param(max_seconds, "max_seconds");
   check_param(checkpoint_minutes, "checkpoint_minutes");
   if (active_set.enabled) active_set.validate();
+  sampling.validate();
   if (guard.max_move > 0.5 * contact_margin)
     throw Error("", "yarn relaxation", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin (" +
                                            std::to_string(contact_margin) + " r), or pairs could meet between contact updates");

@@ -102,6 +102,7 @@ struct YarnRelaxOptions {
   double max_seconds = 0;       ///< wall-time cap, 0 for none
   bool audit = true;            ///< run the topology auditor on every step (pull_through_events)
   ActiveSetOptions active_set;  ///< converged points stop being integrated (CPU only)
+  ContactSampling sampling;     ///< contact samples per segment, for the systems the callers build (make_yarn_system)
   std::filesystem::path checkpoint;  ///< written atomically every checkpoint_every steps / minutes
   long checkpoint_every = 0;
   double checkpoint_minutes = 0;

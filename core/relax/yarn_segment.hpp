@@ -94,7 +94,7 @@ SKEIN_HD void segment_samples(const SegmentView<T>& v, int s, Point point, Veloc
     basis(T(i) / T(n - 1), w);
     out.pos[first + i] = combine(w, p);
     out.vel[first + i] = combine(w, u);
-    out.weight[first + i] = simpson_weight<T>(i, n) * v.rest_length[s];
+    out.weight[first + i] = contact_weight<T>(i, n) * v.rest_length[s];
     out.arc[first + i] = v.arc_start[s] + v.rest_length[s] * T(i) / T(n - 1);
   }
 }

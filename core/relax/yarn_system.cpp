@@ -22,11 +22,60 @@ double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& s
   return length;
 }
 
+void ContactSampling::validate() const {
+  if (!(spacing >= 0 && spacing <= kMaxCoveringSpacing))
+    throw Error("", "contact spacing", "must be 0 (Leaf's rule) or at most 2√2 ≈ 2.828 yarn radii, so that crossing yarns always feel contact; found " +
+                                           std::to_string(spacing));
+}
+
+namespace {
+
+/// Leaf 2018 §3.1: an odd number of contact samples, more than L / 2r (Leaf takes the shortest segment's count
+/// for all; per segment keeps long segments covered and short ones cheap).
+int leaf_samples(double rest_length, double radius) {
+  int n = static_cast<int>(std::floor(rest_length / (2 * radius))) + 1;
+  if (n % 2 == 0) ++n;
+  return std::max(3, n);
+}
+
+/// The fewest samples (2, or odd) at uniform parameter steps that leave no gap of rest arc longer than
+/// `spacing` r between two of them: the segment's parameter speed |y'| measured on its shape as given, scaled to
+/// its rest length, so uneven speed (unevenly spaced control points) gets more samples. Arc, not chord: the
+/// length penalty holds the arc, and no bending can make a chord longer. kMaxContactSamples + 1 when none is enough.
+int adaptive_samples(const Eigen::Matrix3Xd& points, const std::array<int, 4>& segment, double rest_length, double radius, double spacing) {
+  model::Vec3<double> p[4];
+  for (int k = 0; k < 4; ++k) p[k] = {points(0, segment[k]), points(1, segment[k]), points(2, segment[k])};
+  // Arc from t = 0 to t = k / kFine, by the midpoint rule.
+  constexpr int kFine = 64;
+  std::array<double, kFine + 1> arc{};
+  for (int k = 0; k < kFine; ++k) {
+    double w[4];
+    model::basis_d1((k + 0.5) / kFine, w);
+    arc[k + 1] = arc[k] + model::norm(model::combine(w, p)) / kFine;
+  }
+  const double scale = rest_length / arc[kFine];
+  const auto arc_at = [&](double t) {
+    const double x = t * kFine;
+    const int k = std::min(static_cast<int>(x), kFine - 1);
+    return arc[k] + (x - k) * (arc[k + 1] - arc[k]);
+  };
+  for (int n = 2; n <= model::kMaxContactSamples; n += (n == 2 ? 1 : 2)) {
+    double widest = 0;
+    for (int i = 0; i + 1 < n; ++i) widest = std::max(widest, arc_at(static_cast<double>(i + 1) / (n - 1)) - arc_at(static_cast<double>(i) / (n - 1)));
+    if (widest * scale <= spacing * radius) return n;
+  }
+  return model::kMaxContactSamples + 1;
+}
+
+}  // namespace
+
 bool YarnSystem::adjacent(int a, int b) const { return model::adjacent(segment_view(*this), a, b); }
 
 bool YarnSystem::consecutive(int a, int b) const { return model::consecutive(segment_view(*this), a, b); }
 
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, const std::map<std::string, double>& take_up_by_type) {
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, const std::map<std::string, double>& take_up_by_type,
+                            const ContactSampling& sampling) {
+  sampling.validate();
   if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
   if (!(take_up > 0) || !std::isfinite(take_up)) throw Error("", "", "the yarn take-up must be positive, found " + std::to_string(take_up));
   // Per point type: the take-up of the segments that start there.
@@ -76,16 +125,15 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, cons
     }
   }
   if (s.num_segments() == 0) throw Error("", "", "the yarn has no segment (every curve has fewer than two points)");
-  // Leaf 2018 §3.1: an odd number of contact samples, more than L / 2r, per segment (Leaf takes the
-  // shortest segment's count for all; per segment keeps long segments covered and short ones cheap).
-  for (double l : s.rest_length) {
-    int n = static_cast<int>(std::floor(l / (2 * s.radius))) + 1;
-    if (n % 2 == 0) ++n;
+  for (int seg = 0; seg < s.num_segments(); ++seg) {
+    const double l = s.rest_length[seg];
+    const int n = sampling.spacing > 0 ? adaptive_samples(s.points, s.segment_points[seg], l, s.radius, sampling.spacing) : leaf_samples(l, s.radius);
     if (n > model::kMaxContactSamples)
-      throw Error("", "segment " + std::to_string(s.contact_samples.size()),
-                  "a segment " + std::to_string(l) + " mm long, more than 60 yarn diameters: resample the yarn more finely");
-    s.sample_start.push_back(s.sample_start.empty() ? 0 : s.sample_start.back() + s.contact_samples.back());
-    s.contact_samples.push_back(std::max(3, n));
+      throw Error("", "segment " + std::to_string(seg),
+                  "a segment " + std::to_string(l) + " mm long needs more than " + std::to_string(model::kMaxContactSamples) +
+                      " contact samples: resample the yarn more finely");
+    s.sample_start.push_back(seg == 0 ? 0 : s.sample_start.back() + s.contact_samples.back());
+    s.contact_samples.push_back(n);
   }
   // Point -> segment stencil (Leaf §3.2): every segment whose four control points include the point.
   std::vector<int> count(n + 1, 0);

@@ -28,7 +28,7 @@ struct YarnSystem {
   std::vector<int> point_segments_start;         ///< CSR: point p touches segments point_segments[start[p] .. start[p+1])
   std::vector<int> point_segments;               ///< with the slot (0..3) in the lowest two bits
   double radius = 0;                             ///< yarn radius r [mm]
-  std::vector<int> contact_samples;              ///< per segment: sphere samples, odd and more than its rest length / 2r
+  std::vector<int> contact_samples;              ///< per segment: sphere samples (ContactSampling)
   std::vector<int> sample_start;                 ///< per segment: its first sample in a flat list of all samples
 
   int num_points() const { return static_cast<int>(points.cols()); }
@@ -46,12 +46,26 @@ struct YarnSystem {
 /// Arc length of one Catmull-Rom segment (p0 p1 p2 p3) [mm].
 double spline_length(const Eigen::Matrix3Xd& points, const std::array<int, 4>& segment);
 
+/// How many contact samples each segment gets (Leaf 2018 §3.1; issue 10's adaptive sampling).
+struct ContactSampling {
+  /// 0: Leaf's rule per segment, an odd count more than its rest length / 2r. Above 0 (adaptive): the fewest
+  /// samples (2, or an odd count) that leave no gap of rest arc longer than `spacing` r between two consecutive
+  /// samples, measured with the segment's own parameter speed: short segments get 2 (the trapezoid rule), unevenly
+  /// parametrised ones more. Up to kMaxCoveringSpacing, where every crossing of two centrelines still has two
+  /// samples closer than 2r, so contact is felt before one yarn can pass another.
+  double spacing = 0;
+  /// Two chains of samples g apart that cross at the worst place keep samples sqrt(g² / 2) apart: under 2r while g < 2√2 r.
+  static constexpr double kMaxCoveringSpacing = 2.8284271247461903;
+  void validate() const;  ///< throws skein::Error for a spacing outside [0, 2√2]
+};
+
 /// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`,
 /// and times `take_up_by_type[name]` for segments that start in a stitch (or weft, warp) of that type (Leaf
 /// 2018 §6.1: more or less yarn for slip stitches, or along the warp or the weft). Throws skein::Error when the
 /// yarn has no segment, a non-positive radius or take-up, coincident control points, or a take-up names a
-/// type the yarn does not have.
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {});
+/// type the yarn does not have. `sampling` sets each segment's contact samples, from its shape as given.
+YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {},
+                            const ContactSampling& sampling = {});
 
 /// The curves with only the points where `keep` is set: a curve is cut where it loses points (a closed curve
 /// that loses some opens there, just after a lost point) and pieces of fewer than two points are dropped; the

@@ -248,6 +248,24 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   EXPECT_NE(r.output.find("the active set runs on the CPU only"), std::string::npos) << r.output;
 }
 
+TEST(Cli, RelaxYarnTakesAdaptiveContactSamplesAndRefusesASpacingThatLetsYarnSlipThrough) {
+  ScratchDir dir;
+  const auto project = dir / "swatch.skein", relaxed = dir / "relaxed.bcc", leaf = dir / "leaf.json", adaptive = dir / "adaptive.json";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project.string()).status, 0);
+  auto r = run_skein("relax-yarn " + project.string() + " --max-steps 0 -o " + relaxed.string() + " --report " + leaf.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = run_skein("relax-yarn " + project.string() + " --max-steps 0 --contact-spacing 2.8 -o " + relaxed.string() + " --report " + adaptive.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto samples = [](const std::string& json) { return std::stol(json.substr(json.find("\"contact_samples\": ") + 19)); };
+  EXPECT_LT(samples(slurp(adaptive)), samples(slurp(leaf)));
+  EXPECT_NE(slurp(adaptive).find("\"contact_spacing_r\": 2.8"), std::string::npos);
+  const auto none = dir / "none.bcc";
+  r = run_skein("relax-yarn " + project.string() + " --contact-spacing 3 -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("so that crossing yarns always feel contact"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(none));
+}
+
 TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   ScratchDir dir;
   const auto bad = dir.write("bad.ckp", "SKEINCKP and then nothing useful");
@@ -363,6 +381,8 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("expected a whole number, found \"many\""), std::string::npos) << msg;
   msg = error_for("active.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"active_set": "yes"}})");
   EXPECT_NE(msg.find("key 'relax_yarn.active_set'"), std::string::npos) << msg;
+  msg = error_for("spacing.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"contact_spacing": 4}})");
+  EXPECT_NE(msg.find("key 'relax_yarn.contact_spacing'"), std::string::npos) << msg;
   msg = error_for("method.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"method": "rk4"}})");
   EXPECT_NE(msg.find("expected \"fire\" or \"euler\", found \"rk4\""), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");
