@@ -7,9 +7,7 @@
 source "$(dirname "$0")/common.sh"
 runs=${1:-3}
 model=${2:-mitten}
-"$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model.skein"
-"$skein" -q relax-mesh "$tmp/$model.skein" -o "$tmp/relaxed.skein"
-field() { python3 -c "import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
+mesh_relaxed "$model" "$tmp/relaxed.skein"
 echo "model,control_points,full_steps,full_seconds,active_steps,active_seconds,speedup,integrated_share,sleeps,wakes_by_force,wakes_by_move,rms_r,largest_r,energy_full,energy_active,pull_through_events"
 for i in $(seq "$runs"); do
   OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/full.bcc" --report "$tmp/full.json" --no-audit

@@ -44,8 +44,7 @@ speed() {
   for model in mitten sweater; do
     local cap=${MITTEN_SECONDS:-300}
     [[ $model == sweater ]] && cap=${SWEATER_SECONDS:-180}
-    "$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model-tessellated.skein"
-    "$skein" -q relax-mesh "$tmp/$model-tessellated.skein" -o "$tmp/$model-mesh-relaxed.skein"
+    mesh_relaxed "$model" "$tmp/$model-mesh-relaxed.skein"
     local summary=$out/speed-$model.csv
     echo "method,start,stopped_by,steps,wall_seconds,residual,pull_through_events,cap_seconds" > "$summary"
     for method in fire euler; do
@@ -237,8 +236,7 @@ EOF
 }
 
 active_set() {
-  "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
-  "$skein" -q relax-mesh "$tmp/mitten.skein" -o "$tmp/mitten-relaxed.skein"
+  mesh_relaxed mitten "$tmp/mitten-relaxed.skein"
   relax "$tmp/mitten-relaxed.skein" "$out/active-full.csv" --no-audit
   relax "$tmp/mitten-relaxed.skein" "$out/active-set.csv" --no-audit --active-set
   active_plot

@@ -9,8 +9,7 @@ runs=${1:-1}
 shift || true
 configs=("$@")
 [ ${#configs[@]} -gt 0 ] || configs=(1:1:1 1:2:2 0.2:1:1 5:1:1)  # percent repainted, rings, halo
-"$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
-"$skein" -q relax-mesh "$tmp/mitten.skein" -o "$tmp/mitten-relaxed.skein"
+mesh_relaxed mitten "$tmp/mitten-relaxed.skein"
 header=1
 for i in $(seq "$runs"); do
   for config in "${configs[@]}"; do

@@ -8,10 +8,8 @@ source "$(dirname "$0")/common.sh"
 runs=${1:-3}
 model=${2:-mitten}
 spacing=${3:-2.5}
-"$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model.skein"
-"$skein" -q relax-mesh "$tmp/$model.skein" -o "$tmp/relaxed.skein"
+mesh_relaxed "$model" "$tmp/relaxed.skein"
 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/audited.bcc" --report "$tmp/audited.json" --contact-spacing "$spacing"
-field() { python3 -c "import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
 events=$(field "$tmp/audited.json" "r['pull_through_events']")
 echo "model,control_points,spacing_r,leaf_samples,adaptive_samples,leaf_steps,leaf_seconds,adaptive_steps,adaptive_seconds,speedup,\
 leaf_ms_per_step,adaptive_ms_per_step,rms_r,largest_r,energy_leaf,energy_adaptive,pull_through_events"

@@ -4,25 +4,9 @@ a point is dropped when the Catmull-Rom segment through its kept neighbours stay
 it replaces (the original segments on both sides, 8 samples each, against the new one at 64). Prints one CSV line
 per tolerance: tolerance_r,points,removable,share. Usage: bench/spline_slack.py YARN.bcc [TOL ...] (default 0.05 0.1 0.2)."""
 import math
-import struct
 import sys
 
-
-def read(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    if data[:3] != b"BCC" or len(data) < 64:
-        sys.exit(f"{path}: not a .bcc file")
-    info = data[24:64].split(b"\0")[0].decode(errors="replace")
-    if "radius " not in info:
-        sys.exit(f"{path}: no yarn radius in its header")
-    radius = float(info.split("radius ")[1].split()[0])
-    count, at, curves = struct.unpack_from("<Q", data, 8)[0], 64, []
-    for _ in range(count):
-        n = abs(struct.unpack_from("<i", data, at)[0])
-        curves.append(list(struct.iter_unpack("<3f", data[at + 4:at + 4 + 12 * n])))
-        at += 4 + 12 * n
-    return radius, curves
+from bcc import read_curves
 
 
 def catmull_rom(p0, p1, p2, p3, t):
@@ -47,7 +31,9 @@ def removable(points, tolerance):
     return dropped
 
 
-radius, curves = read(sys.argv[1])
+radius, curves = read_curves(sys.argv[1])
+if radius <= 0:
+    sys.exit(f"{sys.argv[1]}: no yarn radius in its header")
 total = sum(len(c) for c in curves)
 print("tolerance_r,points,removable,share")
 for tolerance in [float(t) for t in sys.argv[2:]] or [0.05, 0.1, 0.2]:

@@ -8,11 +8,9 @@ source "$(dirname "$0")/common.sh"
 runs=${1:-3}
 model=${2:-mitten}
 full=${3:-1}
-"$skein" -q stitch "models/$model.obj" --labels "models/$model.skein" -o "$tmp/$model.skein"
-"$skein" -q relax-mesh "$tmp/$model.skein" -o "$tmp/relaxed.skein"
+mesh_relaxed "$model" "$tmp/relaxed.skein"
 "$skein" -q yarn "$tmp/relaxed.skein" -o "$tmp/emitted.bcc"
 OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/probe.bcc" --report "$tmp/emitted.json" --max-steps 0 --no-audit
-field() { python3 -c "import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
 distance() { bench/yarn_distance.py "$1" "$2"; }  # A B: "rms_r,largest_r"
 echo "model,control_points,full_seconds,full_steps,standin_seconds,speedup,placed_points,following_points,taken_back_points,patch_steps,\
 rms_standin_full_r,largest_standin_full_r,rms_emitted_full_r,largest_emitted_full_r,energy_emitted,energy_standin,energy_full,pull_through_events"

@@ -3,23 +3,14 @@
 from the first file's header): "RMS,LARGEST". For the bench scripts; `skein audit` gives the same figures with
 the crossing and linking-number checks, which take minutes on a garment."""
 import math
-import struct
 import sys
+
+from bcc import read_curves
 
 
 def read(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    if data[:3] != b"BCC" or len(data) < 64:
-        sys.exit(f"{path}: not a .bcc file")
-    info = data[24:64].split(b"\0")[0].decode(errors="replace")
-    radius = float(info.split("radius ")[1].split()[0]) if "radius " in info else 0.0
-    curves, at, points = struct.unpack_from("<Q", data, 8)[0], 64, []
-    for _ in range(curves):
-        n = abs(struct.unpack_from("<i", data, at)[0])
-        points.extend(struct.iter_unpack("<3f", data[at + 4:at + 4 + 12 * n]))
-        at += 4 + 12 * n
-    return radius, points
+    radius, curves = read_curves(path)
+    return radius, [p for curve in curves for p in curve]
 
 
 radius, a = read(sys.argv[1])
