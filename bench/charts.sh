@@ -11,17 +11,15 @@
 #              (issue 10; bench/local_runs.sh)
 #   active     the mitten relaxed from its emission with and without the active set: residual against time,
 #              and the share of points integrated per step (issue 10)
-# Usage: bench/charts.sh [speed|stability|periodic|local|active|all|plots]   (plots: redraw all from the CSVs)
+#   sampling   the mitten relaxed from its emission with Leaf's contact samples and adaptive ones: residual
+#              against step (issue 10)
+# Usage: bench/charts.sh [speed|stability|periodic|local|active|sampling|all|plots]   (plots: redraw all from the CSVs)
 # Env: MITTEN_SECONDS, SWEATER_SECONDS: the cap per speed run (300 and 180).
 # Writes docs/images/charts/*.png and the measured data beside them as CSV.
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 what=${1:-all}
-skein=build/bin/skein
 out=docs/images/charts
 mkdir -p "$out"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 command -v gnuplot > /dev/null || { echo "bench/charts.sh needs gnuplot (apt-get install gnuplot-nox)" >&2; exit 2; }
 
 # The first lines of every chart's gnuplot script: a PNG of SIZE (W,H) in font size FONT written to FILE.
@@ -265,14 +263,38 @@ unset multiplot
 EOF
 }
 
+sampling() {
+  mesh_relaxed mitten "$tmp/mitten-relaxed.skein"
+  relax "$tmp/mitten-relaxed.skein" "$out/sampling-leaf.csv" --no-audit
+  relax "$tmp/mitten-relaxed.skein" "$out/sampling-adaptive.csv" --no-audit --contact-spacing 2.5
+  sampling_plot
+}
+
+sampling_plot() {
+  gnuplot <<EOF
+$(png_head 1300,600 12 "$out/contact-sampling.png")
+set datafile separator ','
+set title "The mitten (46,337 points) relaxed from its emission with Leaf's contact samples and adaptive ones (2.5 r; FIRE)"
+set grid
+set xlabel 'step'
+set logscale y
+set ylabel '|∇E| / |∇E_0|'
+set yrange [0.005:10]
+plot '$out/sampling-leaf.csv' every ::1 using 1:3 with lines lw 2 lc rgb '0x1e88e5' title "Leaf's rule (139,163 samples)", \
+     '$out/sampling-adaptive.csv' every ::1 using 1:3 with lines lw 2 lc rgb '0xfb8c00' title 'adaptive (101,513 samples)', \
+     0.01 with lines dt 2 lc rgb '0x757575' title 'tolerance'
+EOF
+}
+
 case $what in
   speed) speed ;;
-  plots) speed_plots; stability_plot; periodic_plot; local_plot; active_plot ;;
+  plots) speed_plots; stability_plot; periodic_plot; local_plot; active_plot; sampling_plot ;;
   stability) stability ;;
   periodic) periodic ;;
   local) local_relaxation ;;
   active) active_set ;;
-  all) periodic; stability; speed; local_relaxation; active_set ;;
-  *) echo "usage: bench/charts.sh [speed|stability|periodic|local|active|all|plots]" >&2; exit 2 ;;
+  sampling) sampling ;;
+  all) periodic; stability; speed; local_relaxation; active_set; sampling ;;
+  *) echo "usage: bench/charts.sh [speed|stability|periodic|local|active|sampling|all|plots]" >&2; exit 2 ;;
 esac
 echo "wrote $out/"
