@@ -207,9 +207,12 @@ int main(int argc, char** argv) {
   bool ry_stand_in = false;
   relax::StandInOptions ry_stand_in_options;
   ry->add_flag("--stand-in", ry_stand_in,
-               "a fast preview, not a relaxation: each stitch type's periodic patch relaxed and mapped over the faces where the garment is that type; "
-               "the output is marked as a preview");
-  ry->add_option("--stand-in-min-faces", ry_stand_in_options.min_faces, "with --stand-in: fewest faces of a stitch type for it to get a patch")
+               "a fast preview, not a relaxation: each repeating pattern's periodic patch (stockinette, rib, seed ...) relaxed and mapped over "
+               "the faces knitted in it; the output is marked as a preview");
+  ry->add_option("--stand-in-min-faces", ry_stand_in_options.min_faces, "with --stand-in: fewest faces of a repeat for it to get a patch")
+      ->capture_default_str();
+  ry->add_option("--stand-in-max-period", ry_stand_in_options.max_period,
+                 "with --stand-in: longest repeat looked for, in stitches along the row and the wale (1 to 16)")
       ->capture_default_str();
 
   // skein pattern
@@ -597,17 +600,17 @@ int main(int argc, char** argv) {
         const long crossings = static_cast<long>(relax::TopologyAuditor(system).crossings(system.points, points).size());
         const auto out = relax::with_points(yarn, points);
         write_yarn(out, ry_out, true);
-        spdlog::info("stand-in preview (not a relaxation) in {:.2f} s: {} stitch types, {} of {} control points placed from their patches, {} following "
+        spdlog::info("stand-in preview (not a relaxation) in {:.2f} s: {} repeats, {} of {} control points placed from their patches, {} following "
                      "their yarn; {} crossings on the way from the emission; wrote {}",
-                     stand_in.seconds, stand_in.types.size(), stand_in.placed, out.points.size(), stand_in.following, crossings, ry_out);
+                     stand_in.seconds, stand_in.repeats.size(), stand_in.placed, out.points.size(), stand_in.following, crossings, ry_out);
         if (!ry_report.empty()) {
-          json types = json::array();
-          for (const auto& t : stand_in.types)
-            types.push_back({{"type", t.type}, {"faces", t.faces}, {"patch_steps", t.patch_steps}, {"patch_converged", t.converged},
-                             {"patch_seconds", t.patch_seconds}});
+          json repeats = json::array();
+          for (const auto& t : stand_in.repeats)
+            repeats.push_back({{"pattern", t.pattern}, {"across", t.across}, {"up", t.up}, {"faces", t.faces}, {"patch_steps", t.patch_steps},
+                               {"patch_converged", t.converged}, {"patch_seconds", t.patch_seconds}});
           write_json({{"input", ry_in}, {"preview", "stand-in"}, {"wall_seconds", stand_in.seconds}, {"energy", energy},
                       {"control_points", out.points.size()}, {"pull_through_events", crossings},
-                      {"stand_in", {{"types", types}, {"placed_points", stand_in.placed}, {"following_points", stand_in.following},
+                      {"stand_in", {{"repeats", repeats}, {"placed_points", stand_in.placed}, {"following_points", stand_in.following},
                                     {"taken_back_points", stand_in.taken_back}}},
                       {"yarn", yarn_json(out)}},
                      ry_report);

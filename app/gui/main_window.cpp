@@ -646,15 +646,15 @@ bool MainWindow::preview_yarn() {
     const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, {}, report);
     // Not a relaxation: Relax yarn starts from the emission.
     m_doc.set_yarn_preview(relax::with_points(yarn, points), tr("Preview yarn"));
-    QStringList types;
-    for (const auto& t : report.types) types << QString::fromStdString(t.type);
-    m_job_label->setText(report.types.empty()
-                             ? tr("stand-in preview: no stitch type covers a region of %1 stitches; the yarn is as emitted").arg(relax::StandInOptions{}.min_faces)
+    QStringList repeats;
+    for (const auto& t : report.repeats) repeats << QString::fromStdString(t.pattern);
+    m_job_label->setText(report.repeats.empty()
+                             ? tr("stand-in preview: no repeating pattern covers a region of %1 stitches; the yarn is as emitted").arg(relax::StandInOptions{}.min_faces)
                              : tr("stand-in preview (not a relaxation) in %1 s: %2 of %3 control points from the patches of %4")
                                    .arg(report.seconds, 0, 'f', 1)
                                    .arg(report.placed)
                                    .arg(points.cols())
-                                   .arg(types.join(", ")));
+                                   .arg(repeats.join(", ")));
   });
 }
 

@@ -13,6 +13,7 @@
 #include "relax/yarn_periodic.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/pattern.hpp"
+#include "stitchmesh/repeats.hpp"
 
 namespace skein::relax {
 namespace {
@@ -56,47 +57,21 @@ struct Bilinear {
   }
 };
 
-/// Per face: whether it may stand in (a 1-1 quad inside the garment, no cable mark on its course edges, every
-/// face around its corners of its type).
-std::vector<char> eligible_faces(const mesh::StitchMesh& mesh) {
-  const int faces = static_cast<int>(mesh.faces.size());
-  std::vector<std::vector<int>> faces_of(mesh.vertices.size());
-  std::map<std::pair<int, int>, int> edge_uses;
-  for (int f = 0; f < faces; ++f) {
-    const auto& face = mesh.faces[f];
-    for (int v : face.vertices) faces_of[v].push_back(f);
-    for (int k = 0; k < face.size(); ++k) ++edge_uses[std::minmax(face.vertex(k), face.vertex(k + 1))];
-  }
-  std::vector<char> out(faces, 0);
-  for (int f = 0; f < faces; ++f) {
-    const auto& face = mesh.faces[f];
-    if (face.bottom != 1 || face.top() != 1) continue;
-    bool ok = true;
-    for (int k = 0; k < 4 && ok; ++k) {
-      const std::pair<int, int> edge = std::minmax(face.vertex(k), face.vertex(k + 1));
-      ok = edge_uses[edge] == 2 && (face.is_wale(k) || !mesh.cables.count(edge));
-      for (int g : faces_of[face.vertex(k)]) ok = ok && mesh.faces[g].type == face.type && mesh.faces[g].bottom == 1 && mesh.faces[g].top() == 1;
-    }
-    out[f] = ok;
-  }
-  return out;
-}
-
-/// A stitch type's periodic patch relaxed: its real points in the centre face's frame (u, v, h) and their moves
-/// in relaxation (a, b, c) in the same frame, the patch's drift (the mean move) removed.
-struct RelaxedStitch {
-  std::vector<Vector3d> where, move;
+/// A repeat's periodic patch relaxed: per place in the repeat (row * width + column), the patch's points
+/// around one stitch at that place (its own and its neighbours', as far as one stitch beyond its face) at
+/// (u, v, h) in that stitch's frame, and their moves in relaxation (a, b, c) in the same frame, the patch's
+/// drift (the mean move of its real points) removed.
+struct RelaxedRepeat {
+  std::vector<std::vector<Vector3d>> where, move;
   long steps = 0;
   bool converged = false;
 };
-RelaxedStitch relax_stitch(const std::string& type, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius,
-                           const YarnRelaxOptions& options) {
-  mesh::Pattern pattern;
-  pattern.name = type;
-  pattern.rows = {{type}};
-  auto patch = periodic_patch(pattern, library, size, radius);
+RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius,
+                           const YarnRelaxOptions& options, int max_period) {
+  const std::string what = "stand-in for " + mesh::repeat_text(repeat);
+  auto patch = periodic_patch(repeat, library, size, radius);
   const auto system = make_yarn_system(patch.yarn);
-  const auto tiles = mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size);
+  const auto tiles = mesh::pattern_stitch_mesh(repeat, patch.tiles, patch.tiles, size);
   // The forces the garment's relaxation feels: the patch-tracking ones too (the patch has no border loops).
   auto shape = options.shape;
   shape.boundary = false;
@@ -104,25 +79,42 @@ RelaxedStitch relax_stitch(const std::string& type, const mesh::StitchLibrary& l
   targets.periodic = patch.map;
   YarnState state = initial_state(system, options);
   const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  if (run.stopped_by == "diverged") throw Error("", "stand-in for " + type, "the periodic patch's relaxation diverged");
-  // The centre face: the face most real points were emitted for.
-  std::map<int, int> votes;
-  std::vector<int> real;
-  for (int p = 0; p < system.num_points(); ++p)
-    if (patch.ring[p] == 0) real.push_back(p), ++votes[patch.yarn.point_face[p]];
-  int centre = -1;
-  for (const auto& [f, count] : votes)
-    if (f >= 0 && (centre < 0 || count > votes[centre])) centre = f;
-  if (centre < 0) throw Error("", "stand-in for " + type, "the periodic patch has no real point on a face");
-  const Bilinear frame(tiles, centre);
+  if (run.stopped_by == "diverged") throw Error("", what, "the periodic patch's relaxation diverged");
   Vector3d drift = Vector3d::Zero();
-  for (int p : real) drift += state.points.col(p) - system.points.col(p);
-  drift /= static_cast<double>(real.size());
-  RelaxedStitch out;
-  for (int p : real) {
-    const Vector3d uvh = frame.local(system.points.col(p));
-    out.where.push_back(uvh);
-    out.move.push_back(frame.split(state.points.col(p) - system.points.col(p) - drift, uvh.x(), uvh.y()));
+  int real = 0;
+  for (int p = 0; p < system.num_points(); ++p)
+    if (patch.ring[p] == 0) drift += state.points.col(p) - system.points.col(p), ++real;
+  if (real == 0) throw Error("", what, "the periodic patch has no real point");
+  drift /= real;
+  // Each place's stitch nearest the patch's middle, found as the garment's are.
+  const auto found = mesh::find_repeats(tiles, max_period);
+  const auto it = std::find_if(found.repeats.begin(), found.repeats.end(), [&](const mesh::Pattern& p) { return p.rows == repeat.rows; });
+  if (it == found.repeats.end()) throw Error("", what, "the periodic patch's own stitch mesh does not show the repeat");
+  const int r = static_cast<int>(it - found.repeats.begin()), width = repeat.width();
+  Vector3d middle = Vector3d::Zero();
+  for (const auto& v : tiles.vertices) middle += v / static_cast<double>(tiles.vertices.size());
+  const auto centroid = [&](int f) { return Bilinear(tiles, f).at(0.5, 0.5); };
+  std::vector<int> stitch(width * repeat.height(), -1);
+  for (int f = 0; f < static_cast<int>(tiles.faces.size()); ++f) {
+    if (found.repeat[f] != r) continue;
+    int& best = stitch[found.row[f] * width + found.column[f]];
+    if (best < 0 || (centroid(f) - middle).norm() < (centroid(best) - middle).norm()) best = f;
+  }
+  RelaxedRepeat out;
+  const double reach = 2 * (size.width + size.height);
+  for (int f : stitch) {
+    if (f < 0) throw Error("", what, "the periodic patch lacks a stitch of the repeat");
+    const Bilinear frame(tiles, f);
+    std::vector<Vector3d> where, move;
+    for (int p = 0; p < system.num_points(); ++p) {
+      if ((system.points.col(p) - centroid(f)).norm() > reach) continue;
+      const Vector3d uvh = frame.local(system.points.col(p));
+      if (uvh.x() < -1 || uvh.x() > 2 || uvh.y() < -1 || uvh.y() > 2) continue;
+      where.push_back(uvh);
+      move.push_back(frame.split(state.points.col(p) - system.points.col(p) - drift, uvh.x(), uvh.y()));
+    }
+    out.where.push_back(std::move(where));
+    out.move.push_back(std::move(move));
   }
   out.steps = run.steps;
   out.converged = run.converged;
@@ -132,7 +124,8 @@ RelaxedStitch relax_stitch(const std::string& type, const mesh::StitchLibrary& l
 }  // namespace
 
 void StandInOptions::validate() const {
-  if (min_faces < 1) throw Error("", "stand-in", "the fewest faces of a type must be at least 1, found " + std::to_string(min_faces));
+  if (min_faces < 1) throw Error("", "stand-in", "the fewest faces of a repeat must be at least 1, found " + std::to_string(min_faces));
+  if (max_period < 1 || max_period > 16) throw Error("", "stand-in", "the longest repeat must be 1 to 16 stitches, found " + std::to_string(max_period));
 }
 
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
@@ -142,10 +135,12 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   stand_in.validate();
   const int n = static_cast<int>(yarn.points.size());
   if (static_cast<int>(yarn.point_face.size()) != n) throw Error("", "stand-in", "the yarn does not say which face each point was emitted for");
-  const auto eligible = eligible_faces(stitch);
-  std::map<std::string, std::vector<int>> by_type;
+  const auto regions = mesh::find_repeats(stitch, stand_in.max_period);
+  spdlog::info("stand-in: {} repeating patterns found in {:.2f} s", regions.repeats.size(),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  std::vector<std::vector<int>> faces_of(regions.repeats.size());
   for (int f = 0; f < static_cast<int>(stitch.faces.size()); ++f)
-    if (eligible[f]) by_type[stitch.faces[f].type].push_back(f);
+    if (regions.repeat[f] >= 0) faces_of[regions.repeat[f]].push_back(f);
   Eigen::Matrix3Xd base(3, n);
   for (int p = 0; p < n; ++p) base.col(p) = yarn.points[p];
   Eigen::Matrix3Xd out = base;
@@ -155,9 +150,9 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
     if (yarn.point_face[p] >= 0 && yarn.point_face[p] < static_cast<int>(stitch.faces.size())) points_of[yarn.point_face[p]].push_back(p);
   report = {};
   const double r = yarn.radius;
-  for (const auto& region : by_type) {
-    const std::string& type = region.first;
-    const std::vector<int>& faces = region.second;  // a plain reference: OpenMP regions cannot capture a structured binding
+  for (size_t k = 0; k < regions.repeats.size(); ++k) {
+    const mesh::Pattern& repeat = regions.repeats[k];
+    const std::vector<int>& faces = faces_of[k];
     if (static_cast<int>(faces.size()) < stand_in.min_faces) continue;
     const auto t0 = std::chrono::steady_clock::now();
     // The patch at the region's mean stitch size: its yarn as long as the region's.
@@ -167,34 +162,35 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
       mean.width += 0.5 * ((q.c[1] - q.c[0]).norm() + (q.c[2] - q.c[3]).norm()) / static_cast<double>(faces.size());
       mean.height += 0.5 * ((q.c[3] - q.c[0]).norm() + (q.c[2] - q.c[1]).norm()) / static_cast<double>(faces.size());
     }
-    spdlog::info("stand-in {}: mean stitch {:.3f} x {:.3f} mm", type, mean.width, mean.height);
-    const auto relaxed = relax_stitch(type, library, mean, r, options);
-    StandInType entry{type, static_cast<int>(faces.size()), relaxed.steps, relaxed.converged,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
-    // Each point to the real point at its place in the stitch, modulo the period: lengths in the patch's
-    // stitch (u along the course times its width, v along the wale times its height, h as it is).
-    const auto distance = [&](const Vector3d& a, const Vector3d& b, int i, int j) {
-      return Vector3d((a.x() - b.x() - i) * mean.width, (a.y() - b.y() - j) * mean.height, a.z() - b.z()).norm();
+    const std::string text = mesh::repeat_text(repeat);
+    spdlog::info("stand-in {}: {} faces, mean stitch {:.3f} x {:.3f} mm", text, faces.size(), mean.width, mean.height);
+    const auto relaxed = relax_repeat(repeat, library, mean, r, options, stand_in.max_period);
+    StandInRepeat entry{text, repeat.width(), repeat.height(), static_cast<int>(faces.size()), relaxed.steps, relaxed.converged,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+    // Each point to the patch's point at its place around the same stitch of the repeat: lengths in the
+    // patch's stitch (u along the course times its width, v along the wale times its height, h as it is).
+    const auto distance = [&](const Vector3d& a, const Vector3d& b) {
+      return Vector3d((a.x() - b.x()) * mean.width, (a.y() - b.y()) * mean.height, a.z() - b.z()).norm();
     };
 #pragma omp parallel for schedule(dynamic, 16)
-    for (int k = 0; k < static_cast<int>(faces.size()); ++k) {
-      const Bilinear frame(stitch, faces[k]);
-      for (int p : points_of[faces[k]]) {
+    for (int i = 0; i < static_cast<int>(faces.size()); ++i) {
+      const int f = faces[i], place = regions.row[f] * repeat.width() + regions.column[f];
+      const auto& where = relaxed.where[place];
+      const Bilinear frame(stitch, f);
+      for (int p : points_of[f]) {
         const Vector3d uvh = frame.local(base.col(p));
         double best = r;  // no match farther than one yarn radius
         int match = -1;
-        for (size_t q = 0; q < relaxed.where.size(); ++q)
-          for (int i = -1; i <= 1; ++i)
-            for (int j = -1; j <= 1; ++j)
-              if (const double d = distance(uvh, relaxed.where[q], i, j); d < best) best = d, match = static_cast<int>(q);
+        for (size_t q = 0; q < where.size(); ++q)
+          if (const double d = distance(uvh, where[q]); d < best) best = d, match = static_cast<int>(q);
         if (match < 0) continue;
-        out.col(p) = base.col(p) + frame.carry(uvh, relaxed.move[match]);
+        out.col(p) = base.col(p) + frame.carry(uvh, relaxed.move[place][match]);
         placed[p] = 1;
       }
     }
-    spdlog::info("stand-in {}: its periodic patch relaxed in {} steps ({}), mapped over {} faces", type, relaxed.steps,
+    spdlog::info("stand-in {}: its periodic patch relaxed in {} steps ({}), mapped over {} faces", text, relaxed.steps,
                  relaxed.converged ? "converged" : "not converged", faces.size());
-    report.types.push_back(entry);
+    report.repeats.push_back(entry);
   }
   // The certificate (as for a warm start's splice): on the straight path from the emission to the preview no
   // yarn may pass through another. The faces of segments that would are taken back to following their yarn

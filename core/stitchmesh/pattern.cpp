@@ -233,37 +233,6 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
 
 namespace {
 
-bool plain(const StitchFace& f) { return f.bottom == 1 && f.top() == 1; }
-
-/// The face across local edge `k` of face f, where that edge is local edge `want(other)` of it; -1 if none.
-template <class Want>
-int across(const StitchMesh& mesh, const EdgeTable& table, int f, int k, Want want) {
-  const auto& face = mesh.faces[f];
-  const auto& uses = table.at(edge_key(face.vertex(k), face.vertex(k + 1)));
-  if (uses.count != 2) return -1;
-  const auto& other = uses.use[0].face == f && uses.use[0].local == k ? uses.use[1] : uses.use[0];
-  return other.face != f && want(mesh.faces[other.face], other.local) ? other.face : -1;
-}
-
-/// Steps between plain stitches: along the row (right, left) and along the wale (up into the stitch worked into
-/// this one, down to the one this one is worked into). -1 where there is none or it is not plain.
-enum class Step { Right, Left, Up, Down };
-int step(const StitchMesh& mesh, const EdgeTable& table, int f, Step s) {
-  if (f < 0 || !plain(mesh.faces[f])) return -1;
-  int g = -1;
-  switch (s) {
-    case Step::Right: g = across(mesh, table, f, 1, [](const StitchFace& o, int k) { return k == o.left_wale(); }); break;
-    case Step::Left: g = across(mesh, table, f, 3, [](const StitchFace& o, int k) { return k == o.right_wale(); }); break;
-    case Step::Up: g = across(mesh, table, f, 2, [](const StitchFace& o, int k) { return o.is_bottom(k); }); break;
-    case Step::Down: g = across(mesh, table, f, 0, [](const StitchFace& o, int k) { return o.is_top(k); }); break;
-  }
-  return g >= 0 && plain(mesh.faces[g]) ? g : -1;
-}
-int steps(const StitchMesh& mesh, const EdgeTable& table, int f, Step s, int n) {
-  for (int i = 0; i < n && f >= 0; ++i) f = step(mesh, table, f, s);
-  return f;
-}
-
 /// The W x H plain stitches of one repeat from its bottom-left stitch `corner` (rows bottom-up, left to right),
 /// or empty when they are not a grid of distinct plain stitches: each row's stitches side by side, each stitch
 /// worked into the one below it.
@@ -273,7 +242,7 @@ std::vector<std::vector<int>> repeat_grid(const StitchMesh& mesh, const EdgeTabl
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
       const int f = c > 0 ? step(mesh, table, grid[r][c - 1], Step::Right) : r > 0 ? step(mesh, table, grid[r - 1][0], Step::Up) : corner;
-      if (f < 0 || !plain(mesh.faces[f]) || !seen.insert(f).second) return {};
+      if (f < 0 || !is_plain(mesh.faces[f]) || !seen.insert(f).second) return {};
       if (r > 0 && step(mesh, table, grid[r - 1][c], Step::Up) != f) return {};
       grid[r][c] = f;
     }
@@ -406,7 +375,7 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
     const auto mod = [](long a, long m) { return ((a % m) + m) % m; };
     for (int f : faces) {
       auto& face = out.faces[f];
-      if (!plain(face)) continue;
+      if (!is_plain(face)) continue;
       const auto& row = pattern.rows[mod(grid.level[f] - grid.level[origin], pattern.height())];
       face.type = row[mod(grid.column[f] - grid.column[origin], static_cast<long>(row.size()))];
       ++counts.stitches;
@@ -414,7 +383,7 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
   } else {
     // Increases, decreases, lace or cables re-mesh: whole repeats only, each over W x H chosen plain stitches,
     // on the lattice of repeats from the origin (found by walking W stitches along the row and H up the wale).
-    if (!plain(mesh.faces[origin]))
+    if (!is_plain(mesh.faces[origin]))
       throw Error("", "face " + std::to_string(origin), "is not a plain stitch: a pattern that re-meshes its stitches starts on one");
     const int w = pattern.width(), h = pattern.height();
     const EdgeTable table = edge_table(mesh);

@@ -166,6 +166,37 @@ int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int f) {
   return mesh.faces[other.face].is_top(other.local) ? other.face : -1;
 }
 
+namespace {
+
+/// The face across local edge `k` of face f, where that edge is local edge `want(other)` of it; -1 if none.
+template <class Want>
+int across(const StitchMesh& mesh, const EdgeTable& table, int f, int k, Want want) {
+  const auto& face = mesh.faces[f];
+  const auto& uses = table.at(edge_key(face.vertex(k), face.vertex(k + 1)));
+  if (uses.count != 2) return -1;
+  const auto& other = uses.use[0].face == f && uses.use[0].local == k ? uses.use[1] : uses.use[0];
+  return other.face != f && want(mesh.faces[other.face], other.local) ? other.face : -1;
+}
+
+}  // namespace
+
+int step(const StitchMesh& mesh, const EdgeTable& table, int f, Step s) {
+  if (f < 0 || !is_plain(mesh.faces[f])) return -1;
+  int g = -1;
+  switch (s) {
+    case Step::Right: g = across(mesh, table, f, 1, [](const StitchFace& o, int k) { return k == o.left_wale(); }); break;
+    case Step::Left: g = across(mesh, table, f, 3, [](const StitchFace& o, int k) { return k == o.right_wale(); }); break;
+    case Step::Up: g = across(mesh, table, f, 2, [](const StitchFace& o, int k) { return o.is_bottom(k); }); break;
+    case Step::Down: g = across(mesh, table, f, 0, [](const StitchFace& o, int k) { return o.is_top(k); }); break;
+  }
+  return g >= 0 && is_plain(mesh.faces[g]) ? g : -1;
+}
+
+int steps(const StitchMesh& mesh, const EdgeTable& table, int f, Step s, int n) {
+  for (int i = 0; i < n && f >= 0; ++i) f = step(mesh, table, f, s);
+  return f;
+}
+
 RowOrder row_order(const StitchMesh& mesh, const std::vector<std::vector<int>>& rows, const EdgeTable& table) {
   // Kahn's order over "row below".
   const int nrows = static_cast<int>(rows.size());

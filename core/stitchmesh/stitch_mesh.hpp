@@ -97,6 +97,15 @@ std::vector<int> top_edge_path(const StitchMesh& mesh, int row, int from, int to
 /// The stitch below a face: across its first bottom edge, where that edge is the other face's top edge; -1 if none.
 int stitch_below(const StitchMesh& mesh, const EdgeTable& table, int face);
 
+/// A plain stitch: one bottom and one top edge.
+inline bool is_plain(const StitchFace& face) { return face.bottom == 1 && face.top() == 1; }
+/// Steps between plain stitches: along the row (right, left) and along the wale (up into the stitch worked into
+/// this one, down to the one this one is worked into). -1 where there is none or it is not plain.
+enum class Step { Right, Left, Up, Down };
+int step(const StitchMesh& mesh, const EdgeTable& table, int face, Step s);
+/// `n` steps the same way; -1 when one fails.
+int steps(const StitchMesh& mesh, const EdgeTable& table, int face, Step s, int n);
+
 /// Rows bottom-up along the wale direction (each row after the rows its stitches are worked into), with
 /// each row's level: 0 for rows worked into nothing (cast-on), else one more than the highest row below.
 /// Rows in a cycle of opposite wale directions come last, in id order.

@@ -228,9 +228,14 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("stand-in preview (not a relaxation)"), std::string::npos) << r.output;
   const auto json = slurp(report);
-  for (const char* key : {"\"preview\": \"stand-in\"", "\"pull_through_events\": 0", "\"type\": \"k\""})
+  for (const char* key : {"\"preview\": \"stand-in\"", "\"pull_through_events\": 0", "\"pattern\": \"k\""})
     EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
   EXPECT_NE(slurp(preview).find("skein preview, radius"), std::string::npos);
+  const auto refused = dir / "refused.bcc";
+  r = run_skein("relax-yarn " + project.string() + " --stand-in --stand-in-max-period 17 -o " + refused.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("the longest repeat must be 1 to 16 stitches, found 17"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(refused));
   // Stand-ins map over stitch faces: bare yarn has none.
   const auto bare = dir / "bare.bcc", none = dir / "none.bcc";
   ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + bare.string()).status, 0);

@@ -160,48 +160,52 @@ TEST(YarnRelax, TheActiveSetEndsWhereAFullRelaxationDoesIntegratingFewerPoints) 
 }
 
 TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatchDoes) {
-  // A flat stockinette sheet: its interior faces are exactly the patch's stitch, so the stand-in must move
-  // each of their points as the relaxed periodic patch moved its copy (tile_relaxed_patch), up to the
-  // patch's drift, which the stand-in removes.
+  // Flat sheets of stockinette, 2 x 2 rib and seed stitch: their inner faces are exactly their repeat's
+  // periodic patch, so the stand-in must move each of their points as the relaxed patch moved its copy
+  // (tile_relaxed_patch), up to the patch's drift, which the stand-in removes.
   const auto& library = mesh::StitchLibrary::bundled();
-  const auto pattern = mesh::parse_pattern("format knit\nk\n", "stockinette.knit");
-  const mesh::StitchSize size;
-  const auto sheet = mesh::pattern_stitch_mesh(pattern, 8, 8, size);
-  const auto yarn = mesh::emit_yarn(sheet, library, {.yarn_radius = 0.6});
-  YarnRelaxOptions options;
-  options.audit = false;
-  StandInOptions stand_in;
-  stand_in.min_faces = 1;
-  StandInReport report;
-  const auto preview = stand_in_preview(sheet, yarn, library, options, stand_in, report);
-  ASSERT_EQ(report.types.size(), 1u);
-  EXPECT_EQ(report.types[0].faces, 6 * 6);  // the faces inside the sheet
-  EXPECT_GT(report.placed, 0);
-  EXPECT_EQ(report.placed + report.following, static_cast<int>(yarn.points.size()));
+  for (const std::string rows : {"k\n", "k k p p\n", "p k\nk p\n"}) {
+    SCOPED_TRACE(rows);
+    const auto pattern = mesh::parse_pattern("format knit\n" + rows, "test.knit");
+    const mesh::StitchSize size;
+    const int side = 16;
+    const auto sheet = mesh::pattern_stitch_mesh(pattern, side / pattern.width(), side / pattern.height(), size);
+    const auto yarn = mesh::emit_yarn(sheet, library, {.yarn_radius = 0.6});
+    YarnRelaxOptions options;
+    options.audit = false;
+    StandInOptions stand_in;
+    stand_in.min_faces = 1;
+    StandInReport report;
+    const auto preview = stand_in_preview(sheet, yarn, library, options, stand_in, report);
+    ASSERT_EQ(report.repeats.size(), 1u);
+    EXPECT_EQ(report.repeats[0].faces, (side - 2) * (side - 2));  // the faces inside the sheet
+    EXPECT_EQ(report.repeats[0].across * report.repeats[0].up, pattern.width() * pattern.height());
+    EXPECT_GT(report.placed, 0);
+    EXPECT_EQ(report.placed + report.following, static_cast<int>(yarn.points.size()));
 
-  // The reference: the same patch relaxed the same way, tiled.
-  auto patch = periodic_patch(pattern, library, size, 0.6);
-  const auto system = make_yarn_system(patch.yarn);
-  auto shape = options.shape;
-  shape.boundary = false;
-  ShapeTargets targets = shape_targets(mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size), patch.yarn, shape);
-  targets.periodic = patch.map;
-  YarnState state = initial_state(system, options);
-  make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  const auto tiled = tile_relaxed_patch(patch, state.points, yarn);
+    // The reference: the same patch relaxed the same way, tiled.
+    auto patch = periodic_patch(pattern, library, size, 0.6);
+    const auto system = make_yarn_system(patch.yarn);
+    auto shape = options.shape;
+    shape.boundary = false;
+    ShapeTargets targets = shape_targets(mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size), patch.yarn, shape);
+    targets.periodic = patch.map;
+    YarnState state = initial_state(system, options);
+    make_cpu_yarn_relaxer(system, targets, options)->run(state);
+    const auto tiled = tile_relaxed_patch(patch, state.points, yarn);
 
-  const auto owner = yarn.point_face;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  std::vector<int> inside;
-  for (int p = 0; p < static_cast<int>(yarn.points.size()); ++p) {
-    const int f = owner[p], row = f / 8, col = f % 8;
-    if (f < 0 || row < 2 || row > 5 || col < 1 || col > 6) continue;  // the faces the stand-in maps, less a ring
-    inside.push_back(p);
-    mean += tiled.points.col(p) - preview.col(p);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<int> inside;
+    for (int p = 0; p < static_cast<int>(yarn.points.size()); ++p) {
+      const int f = yarn.point_face[p], row = f / side, col = f % side;
+      if (f < 0 || row < 2 || row > side - 3 || col < 2 || col > side - 3) continue;  // the faces the stand-in maps, less a ring
+      inside.push_back(p);
+      mean += tiled.points.col(p) - preview.col(p);
+    }
+    ASSERT_FALSE(inside.empty());
+    mean /= static_cast<double>(inside.size());
+    double largest = 0;
+    for (int p : inside) largest = std::max(largest, (tiled.points.col(p) - preview.col(p) - mean).norm());
+    EXPECT_LT(largest, 1e-6 * 0.6) << "over " << inside.size() << " points";
   }
-  ASSERT_FALSE(inside.empty());
-  mean /= static_cast<double>(inside.size());
-  double largest = 0;
-  for (int p : inside) largest = std::max(largest, (tiled.points.col(p) - preview.col(p) - mean).norm());
-  EXPECT_LT(largest, 1e-6 * 0.6) << "over " << inside.size() << " points";
 }

@@ -1,0 +1,188 @@
+#include "stitchmesh/repeats.hpp"
+
+#include <algorithm>
+#include <array>
+#include <deque>
+#include <map>
+
+#include "common/error.hpp"
+
+namespace skein::mesh {
+namespace {
+
+int wrap(int a, int m) { return ((a % m) + m) % m; }
+
+/// The stitch grid around plain stitches: per face its neighbours right, left, up and down (mesh::step) and a
+/// type id, -1 for stitches in no repeat (not plain, or on a cable mark).
+struct Grid {
+  std::vector<std::array<int, 4>> next;  ///< indexed by Step
+  std::vector<int> id;
+  std::vector<std::string> names;        ///< per type id
+
+  int at(int f, Step s) const { return f < 0 ? -1 : next[f][static_cast<int>(s)]; }
+  /// The stitch `a` along the row and then `b` up the wale from f; -1 when the walk leaves the grid.
+  int walk(int f, int a, int b) const {
+    for (; a > 0 && f >= 0; --a) f = at(f, Step::Right);
+    for (; a < 0 && f >= 0; ++a) f = at(f, Step::Left);
+    for (; b > 0 && f >= 0; --b) f = at(f, Step::Up);
+    for (; b < 0 && f >= 0; ++b) f = at(f, Step::Down);
+    return f;
+  }
+  /// The same, up the wale first: it meets `walk` where the grid is regular.
+  int walk_wale_first(int f, int a, int b) const {
+    for (; b > 0 && f >= 0; --b) f = at(f, Step::Up);
+    for (; b < 0 && f >= 0; ++b) f = at(f, Step::Down);
+    for (; a > 0 && f >= 0; --a) f = at(f, Step::Right);
+    for (; a < 0 && f >= 0; ++a) f = at(f, Step::Left);
+    return f;
+  }
+  int type(int f) const { return f < 0 ? -1 : id[f]; }
+};
+
+Grid stitch_grid_of(const StitchMesh& mesh) {
+  const int n = static_cast<int>(mesh.faces.size());
+  const EdgeTable table = edge_table(mesh);
+  Grid grid;
+  grid.next.resize(n);
+  grid.id.assign(n, -1);
+  std::map<std::string, int> ids;
+  for (int f = 0; f < n; ++f) {
+    const auto& face = mesh.faces[f];
+    for (Step s : {Step::Right, Step::Left, Step::Up, Step::Down}) grid.next[f][static_cast<int>(s)] = step(mesh, table, f, s);
+    if (!is_plain(face) || mesh.cables.count(std::minmax(face.vertex(0), face.vertex(1))) ||
+        mesh.cables.count(std::minmax(face.vertex(2), face.vertex(3))))
+      continue;
+    const auto [it, added] = ids.emplace(face.type, static_cast<int>(grid.names.size()));
+    if (added) grid.names.push_back(face.type);
+    grid.id[f] = it->second;
+  }
+  return grid;
+}
+
+/// Type ids of the P x Q stitches from f (tile[b * P + a]: a along the row, b up the wale); empty when one is missing.
+std::vector<int> tile_from(const Grid& grid, int f, int P, int Q) {
+  std::vector<int> tile(P * Q);
+  for (int b = 0; b < Q; ++b)
+    for (int a = 0; a < P; ++a)
+      if ((tile[b * P + a] = grid.type(grid.walk(f, a, b))) < 0) return {};
+  return tile;
+}
+
+/// Whether the stitch types from f repeat with period P x Q over the window [-m, P + m) x [-n, Q + n), with
+/// m = max(P, 3) and n = max(Q, 3): at least three stitches each way, so that the middle of a 3 x 3 rib's knit
+/// column is no stockinette.
+bool repeats_with(const Grid& grid, int f, int P, int Q) {
+  const auto tile = tile_from(grid, f, P, Q);
+  if (tile.empty()) return false;
+  const int m = std::max(P, 3), n = std::max(Q, 3);
+  for (int b = -n; b < Q + n; ++b) {
+    int g = grid.walk(f, -m, b);
+    for (int a = -m; a < P + m; ++a, g = grid.at(g, Step::Right))
+      if (grid.type(g) < 0 || grid.type(g) != tile[wrap(b, Q) * P + wrap(a, P)]) return false;
+  }
+  return true;
+}
+
+/// The smallest period (area, then width) the types from f repeat with, or {0, 0}.
+std::pair<int, int> smallest_period(const Grid& grid, int f, int max_period) {
+  if (grid.type(f) < 0) return {0, 0};
+  for (int area = 1; area <= max_period * max_period; ++area)
+    for (int P = 1; P <= std::min(area, max_period); ++P)
+      if (area % P == 0 && area / P <= max_period && repeats_with(grid, f, P, area / P)) return {P, area / P};
+  return {0, 0};
+}
+
+/// Whether f's 3 x 3 neighbourhood is a regular grid with the repeat's types around (column, row).
+bool fits(const Grid& grid, const std::vector<std::vector<int>>& rows, int f, int column, int row) {
+  const int P = static_cast<int>(rows[0].size()), Q = static_cast<int>(rows.size());
+  for (int b = -1; b <= 1; ++b)
+    for (int a = -1; a <= 1; ++a) {
+      const int g = grid.walk(f, a, b);
+      if (g < 0 || g != grid.walk_wale_first(f, a, b) || grid.type(g) != rows[wrap(row + b, Q)][wrap(column + a, P)]) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+int RepeatRegions::faces_of(int r) const { return static_cast<int>(std::count(repeat.begin(), repeat.end(), r)); }
+
+RepeatRegions find_repeats(const StitchMesh& mesh, int max_period) {
+  if (max_period < 1 || max_period > 16)
+    throw Error("", "repeats", "the longest period must be 1 to 16 stitches, found " + std::to_string(max_period));
+  const int n = static_cast<int>(mesh.faces.size());
+  const Grid grid = stitch_grid_of(mesh);
+  std::vector<std::pair<int, int>> period(n);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int f = 0; f < n; ++f) period[f] = smallest_period(grid, f, max_period);
+  // Regions start from the stitches with the smallest periods, so that a stitch between two patterns goes to
+  // the simpler one.
+  std::vector<int> starts;
+  for (int f = 0; f < n; ++f)
+    if (period[f].first > 0) starts.push_back(f);
+  std::stable_sort(starts.begin(), starts.end(),
+                   [&](int a, int b) { return period[a].first * period[a].second < period[b].first * period[b].second; });
+
+  RepeatRegions out;
+  out.repeat.assign(n, -1);
+  out.column.assign(n, -1);
+  out.row.assign(n, -1);
+  std::map<std::vector<std::vector<int>>, int> known;  // a repeat's rows of type ids, canonical phase
+  std::vector<std::vector<std::vector<int>>> id_rows;  // per repeat
+  for (int start : starts) {
+    if (out.repeat[start] >= 0) continue;
+    const auto [P, Q] = period[start];
+    const auto tile = tile_from(grid, start, P, Q);
+    // The canonical phase: the roll (c, d) of the tile whose rows of type names come first.
+    std::vector<std::vector<std::string>> best;
+    std::vector<std::vector<int>> best_ids;
+    int column = 0, row = 0;
+    for (int d = 0; d < Q; ++d)
+      for (int c = 0; c < P; ++c) {
+        std::vector<std::vector<std::string>> names(Q, std::vector<std::string>(P));
+        std::vector<std::vector<int>> ids(Q, std::vector<int>(P));
+        for (int b = 0; b < Q; ++b)
+          for (int a = 0; a < P; ++a) names[b][a] = grid.names[ids[b][a] = tile[((b + d) % Q) * P + (a + c) % P]];
+        if (best.empty() || names < best) best = names, best_ids = ids, column = wrap(-c, P), row = wrap(-d, Q);
+      }
+    if (!fits(grid, best_ids, start, column, row)) continue;
+    auto [it, added] = known.emplace(best_ids, static_cast<int>(out.repeats.size()));
+    if (added) {
+      Pattern pattern;
+      pattern.format = PatternFormat::Knit;
+      pattern.rows = best;
+      pattern.name = repeat_text(pattern);
+      out.repeats.push_back(pattern);
+      id_rows.push_back(best_ids);
+    }
+    const int r = it->second;
+    // Grow the region along rows and wales.
+    std::deque<int> queue{start};
+    out.repeat[start] = r, out.column[start] = column, out.row[start] = row;
+    while (!queue.empty()) {
+      const int f = queue.front();
+      queue.pop_front();
+      for (const auto& [s, da, db] : {std::tuple{Step::Right, 1, 0}, {Step::Left, -1, 0}, {Step::Up, 0, 1}, {Step::Down, 0, -1}}) {
+        const int g = grid.at(f, s);
+        // A stitch whose own surroundings repeat with another period belongs to that pattern's region.
+        if (g < 0 || out.repeat[g] >= 0 || (period[g].first > 0 && period[g] != period[start])) continue;
+        const int c = wrap(out.column[f] + da, P), w = wrap(out.row[f] + db, Q);
+        if (!fits(grid, id_rows[r], g, c, w)) continue;
+        out.repeat[g] = r, out.column[g] = c, out.row[g] = w;
+        queue.push_back(g);
+      }
+    }
+  }
+  return out;
+}
+
+std::string repeat_text(const Pattern& repeat) {
+  std::string text;
+  for (auto row = repeat.rows.rbegin(); row != repeat.rows.rend(); ++row) {
+    if (!text.empty()) text += " / ";
+    for (size_t i = 0; i < row->size(); ++i) text += (i ? " " : "") + (*row)[i];
+  }
+  return text;
+}
+
+}  // namespace skein::mesh
