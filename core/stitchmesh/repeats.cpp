@@ -69,12 +69,12 @@ std::vector<int> tile_from(const Grid& grid, int f, int P, int Q) {
 }
 
 /// Whether the stitch types from f repeat with period P x Q over the window [-m, P + m) x [-n, Q + n), with
-/// m = max(P, 3) and n = max(Q, 3): at least three stitches each way, so that the middle of a 3 x 3 rib's knit
+/// m = max(P, 2) and n = max(Q, 2): at least two stitches each way, so that the middle of a 3 x 3 rib's knit
 /// column is no stockinette.
 bool repeats_with(const Grid& grid, int f, int P, int Q) {
   const auto tile = tile_from(grid, f, P, Q);
   if (tile.empty()) return false;
-  const int m = std::max(P, 3), n = std::max(Q, 3);
+  const int m = std::max(P, 2), n = std::max(Q, 2);
   for (int b = -n; b < Q + n; ++b) {
     int g = grid.walk(f, -m, b);
     for (int a = -m; a < P + m; ++a, g = grid.at(g, Step::Right))

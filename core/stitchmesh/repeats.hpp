@@ -22,7 +22,7 @@ struct RepeatRegions {
 };
 
 /// Finds the repeats. A stitch starts a region when, from it, the stitch types repeat with the pattern's
-/// period over a period and at least three stitches each way (no smaller period does; periods up to
+/// period over a period and at least two stitches each way (no smaller period does; periods up to
 /// `max_period` stitches along the row and along the wale, smallest area first). The region then grows stitch
 /// by stitch along rows and wales to every stitch whose 3 x 3 neighbourhood of stitches is a regular grid with
 /// the pattern's types around that stitch's place in the repeat, unless the stitch starts another pattern's

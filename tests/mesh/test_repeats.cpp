@@ -117,3 +117,15 @@ TEST(Repeats, ALongerPeriodThanAllowedIsNoRepeatAndTheLimitIsChecked) {
   EXPECT_NE(skein::testing::error_of([&] { find_repeats(mesh, 0); }).find("1 to 16"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([&] { find_repeats(mesh, 17); }).find("found 17"), std::string::npos);
 }
+
+TEST(Repeats, ASquareOfFiveByFiveStitchesIsARegionOfItsNineInnerOnes) {
+  auto mesh = sheet("k\n", 16, 16);
+  for (int row = 5; row <= 9; ++row)
+    for (int col = 5; col <= 9; ++col) mesh.faces[row * 16 + col].type = "p";
+  const auto found = find_repeats(mesh);
+  ASSERT_EQ(found.repeats.size(), 2u);
+  EXPECT_EQ(repeat_text(found.repeats[1]), "p");
+  EXPECT_EQ(found.faces_of(1), 9);
+  for (int row = 6; row <= 8; ++row)
+    for (int col = 6; col <= 8; ++col) EXPECT_EQ(found.repeat[row * 16 + col], 1) << row << ", " << col;
+}
