@@ -23,6 +23,11 @@ build/bin/skein-sampler "$tmp" >/dev/null
 "$skein" -q edit "$tmp/rib.skein" --fill rib2x2 -o "$tmp/rib.skein"
 "$skein" -q render "$tmp/rib.skein" --yarn --views flat -o "$out/swatch-rib-emitted.png"
 "$skein" -q relax-yarn "$tmp/rib.skein" -o "$tmp/rib.bcc" --take-up 0.85 --png "$out/swatch-rib-relaxed.png" --views flat
+# A periodic stand-in (a preview, not a relaxation) of a 2 x 2 rib swatch of 256 stitches, and its relaxation.
+"$skein" -q stitch models/swatch.obj --auto-label --stitch-size 8 --stitch-height 6.7 -o "$tmp/rib8.skein"
+"$skein" -q edit "$tmp/rib8.skein" --fill rib2x2 -o "$tmp/rib8.skein"
+"$skein" -q relax-yarn "$tmp/rib8.skein" --stand-in -o "$tmp/rib8-preview.bcc" --png "$out/swatch-rib-stand-in.png" --views flat
+"$skein" -q relax-yarn "$tmp/rib8.skein" -o "$tmp/rib8.bcc" --no-audit --png "$out/swatch-rib-stand-in-relaxed.png" --views flat
 "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
 "$skein" -q relax-yarn "$tmp/mitten.skein" -o "$tmp/mitten.bcc" --no-audit --max-seconds 300 --png "$out/mitten-yarn-relaxed.png" --views flat
 echo "wrote $(ls $out | tr '\n' ' ')"
