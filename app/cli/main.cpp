@@ -214,6 +214,9 @@ int main(int argc, char** argv) {
   ry->add_option("--stand-in-max-period", ry_stand_in_options.max_period,
                  "with --stand-in: longest repeat looked for, in stitches along the row and the wale (1 to 16)")
       ->capture_default_str();
+  ry->add_option("--stand-in-reach", ry_stand_in_options.reach,
+                 "with --stand-in: rings of stitches beyond a region that join it where their type is the pattern's there")
+      ->capture_default_str();
 
   // skein pattern
   auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");

@@ -126,6 +126,7 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrar
 void StandInOptions::validate() const {
   if (min_faces < 1) throw Error("", "stand-in", "the fewest faces of a repeat must be at least 1, found " + std::to_string(min_faces));
   if (max_period < 1 || max_period > 16) throw Error("", "stand-in", "the longest repeat must be 1 to 16 stitches, found " + std::to_string(max_period));
+  if (reach < 0) throw Error("", "stand-in", "the rings beyond a region must be 0 or more, found " + std::to_string(reach));
 }
 
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
@@ -135,7 +136,7 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   stand_in.validate();
   const int n = static_cast<int>(yarn.points.size());
   if (static_cast<int>(yarn.point_face.size()) != n) throw Error("", "stand-in", "the yarn does not say which face each point was emitted for");
-  const auto regions = mesh::find_repeats(stitch, stand_in.max_period);
+  const auto regions = mesh::find_repeats(stitch, stand_in.max_period, stand_in.reach);
   spdlog::info("stand-in: {} repeating patterns found in {:.2f} s", regions.repeats.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   std::vector<std::vector<int>> faces_of(regions.repeats.size());

@@ -15,6 +15,7 @@ namespace skein::relax {
 struct StandInOptions {
   int min_faces = 12;   ///< fewest faces of one repeat for it to get a patch
   int max_period = 8;   ///< longest repeat looked for, in stitches along the row and along the wale (mesh::find_repeats)
+  int reach = 2;        ///< rings of stitches of the pattern's type that join a region beyond it (mesh::find_repeats)
   void validate() const;
 };
 
@@ -38,7 +39,7 @@ struct StandInReport {
 
 /// A preview of a garment's relaxed yarn from periodic stand-ins (issue 10; Leaf 2018 §5): where the garment
 /// is knitted in one repeating pattern over a region (mesh::find_repeats: stockinette, a rib, seed stitch,
-/// any repeat of plain stitches up to `max_period` wide and high), that repeat's periodic patch, at the
+/// any repeat of plain stitches up to `max_period` wide and high, `reach` rings beyond), that repeat's periodic patch, at the
 /// region's mean stitch width and height, is relaxed once (relax::periodic_patch, with `options` and the
 /// patch-tracking forces) and its relaxed yarn mapped over the region's faces, so the garment itself is not
 /// relaxed. On a face of a region each emitted point is found in the face's bilinear frame (u, v along course

@@ -4,6 +4,7 @@
 #include <array>
 #include <deque>
 #include <map>
+#include <tuple>
 
 #include "common/error.hpp"
 
@@ -107,9 +108,10 @@ bool fits(const Grid& grid, const std::vector<std::vector<int>>& rows, int f, in
 
 int RepeatRegions::faces_of(int r) const { return static_cast<int>(std::count(repeat.begin(), repeat.end(), r)); }
 
-RepeatRegions find_repeats(const StitchMesh& mesh, int max_period) {
+RepeatRegions find_repeats(const StitchMesh& mesh, int max_period, int reach) {
   if (max_period < 1 || max_period > 16)
     throw Error("", "repeats", "the longest period must be 1 to 16 stitches, found " + std::to_string(max_period));
+  if (reach < 0) throw Error("", "repeats", "the rings beyond a region must be 0 or more, found " + std::to_string(reach));
   const int n = static_cast<int>(mesh.faces.size());
   const Grid grid = stitch_grid_of(mesh);
   std::vector<std::pair<int, int>> period(n);
@@ -172,6 +174,24 @@ RepeatRegions find_repeats(const StitchMesh& mesh, int max_period) {
         queue.push_back(g);
       }
     }
+  }
+  // The rings beyond: a plain stitch next to a region joins it when its own type is the pattern's at its place,
+  // one ring at a time, each from the stitches the last one reached.
+  for (int ring = 0; ring < reach; ++ring) {
+    std::vector<std::array<int, 4>> joins;  // face, repeat, column, row
+    for (int g = 0; g < n; ++g) {
+      if (out.repeat[g] >= 0 || grid.type(g) < 0) continue;
+      for (const auto& [s, da, db] : {std::tuple{Step::Left, 1, 0}, {Step::Right, -1, 0}, {Step::Down, 0, 1}, {Step::Up, 0, -1}}) {
+        const int f = grid.at(g, s), r = f < 0 ? -1 : out.repeat[f];
+        if (r < 0) continue;
+        const auto& rows = id_rows[r];
+        const int c = wrap(out.column[f] + da, static_cast<int>(rows[0].size())), w = wrap(out.row[f] + db, static_cast<int>(rows.size()));
+        if (rows[w][c] != grid.type(g)) continue;
+        joins.push_back({g, r, c, w});
+        break;
+      }
+    }
+    for (const auto& [g, r, c, w] : joins) out.repeat[g] = r, out.column[g] = c, out.row[g] = w;
   }
   return out;
 }

@@ -26,9 +26,11 @@ struct RepeatRegions {
 /// `max_period` stitches along the row and along the wale, smallest area first). The region then grows stitch
 /// by stitch along rows and wales to every stitch whose 3 x 3 neighbourhood of stitches is a regular grid with
 /// the pattern's types around that stitch's place in the repeat, unless the stitch starts another pattern's
-/// region itself; so a region reaches up to one stitch from another pattern. Throws skein::Error when
-/// max_period is outside 1..16.
-RepeatRegions find_repeats(const StitchMesh& mesh, int max_period = 8);
+/// region itself; so a region reaches up to one stitch from another pattern or a border. Then, one ring at a
+/// time for `reach` rings, plain stitches next to a region join it where their own type is the pattern's at
+/// their place (the stitches along borders, seams and the edge of another pattern). Throws skein::Error when max_period
+/// is outside 1..16 or reach is negative.
+RepeatRegions find_repeats(const StitchMesh& mesh, int max_period = 8, int reach = 0);
 
 /// A repeat as one line: its rows top row first, as a pattern file shows them, separated by " / ".
 std::string repeat_text(const Pattern& repeat);

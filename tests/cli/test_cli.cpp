@@ -236,6 +236,10 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("the longest repeat must be 1 to 16 stitches, found 17"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(refused));
+  r = run_skein("relax-yarn " + project.string() + " --stand-in --stand-in-reach -1 -o " + refused.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("the rings beyond a region must be 0 or more, found -1"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(refused));
   // Stand-ins map over stitch faces: bare yarn has none.
   const auto bare = dir / "bare.bcc", none = dir / "none.bcc";
   ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + bare.string()).status, 0);

@@ -1,5 +1,7 @@
 // Repeats read back from a stitch mesh's types: the smallest period, one canonical phase wherever a pattern
 // is found, regions that reach to one stitch from another pattern, and none around odd stitches.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
@@ -89,6 +91,15 @@ TEST(Repeats, RegionsReachToOneStitchFromAnotherPatternAndTheSamePatternTwiceIsO
   }
   expect_consistent(mesh, found);
   EXPECT_EQ(found.faces_of(1), 2 * 6 * 14);
+
+  // Two rings beyond: every stitch is of its own pattern, the borders and the rows where they meet too. (One
+  // ring leaves the corners and the border stitches of those rows, whose neighbours joined in the same ring.)
+  const auto one = find_repeats(mesh, 8, 1);
+  EXPECT_EQ(std::count(one.repeat.begin(), one.repeat.end(), -1), 4 + 8);
+  const auto reached = find_repeats(mesh, 8, 2);
+  for (int f = 0; f < 16 * 24; ++f) EXPECT_EQ(reached.repeat[f], f / 16 < 8 || f / 16 >= 16 ? 1 : 0) << "face " << f;
+  expect_consistent(mesh, reached);
+  EXPECT_NE(skein::testing::error_of([&] { find_repeats(mesh, 8, -1); }).find("0 or more"), std::string::npos);
 }
 
 TEST(Repeats, TheMiddleOfAWideRibIsNoStockinette) {

@@ -178,7 +178,7 @@ TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatc
     StandInReport report;
     const auto preview = stand_in_preview(sheet, yarn, library, options, stand_in, report);
     ASSERT_EQ(report.repeats.size(), 1u);
-    EXPECT_EQ(report.repeats[0].faces, (side - 2) * (side - 2));  // the faces inside the sheet
+    EXPECT_EQ(report.repeats[0].faces, side * side);  // the faces inside the sheet, and its border reached beyond them
     EXPECT_EQ(report.repeats[0].across * report.repeats[0].up, pattern.width() * pattern.height());
     EXPECT_GT(report.placed, 0);
     EXPECT_EQ(report.placed + report.following, static_cast<int>(yarn.points.size()));
