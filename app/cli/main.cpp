@@ -254,6 +254,8 @@ int main(int argc, char** argv) {
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
   pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
+  pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
+      ->capture_default_str();
   std::string pat_views = "flat";
   int pat_panel = 900;
   pat->add_option("--views", pat_views, "flat (front and back) or front, for --png")->check(CLI::IsMember({"flat", "front"}))->capture_default_str();
@@ -587,6 +589,8 @@ int main(int argc, char** argv) {
         const auto project = mesh::read_project(ry_in);
         const auto& library = ry_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(ry_stitches);
         relax::StandInReport stand_in;
+        ry_stand_in_options.take_up = ry_take_up;
+        ry_stand_in_options.take_up_by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
         const Eigen::Matrix3Xd points =
             relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
         // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
@@ -696,7 +700,7 @@ int main(int argc, char** argv) {
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
         pat_extra["gamma"] = pat_gamma;
-        auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch));
+        auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch), pat_options.sampling);
         if (!pat_period.empty()) {
           double sx = 0, sy = 0;
           char tail = 0;

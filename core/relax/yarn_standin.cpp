@@ -67,10 +67,14 @@ struct RelaxedRepeat {
   bool converged = false;
 };
 RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius,
-                           const YarnRelaxOptions& options, int max_period) {
+                           const YarnRelaxOptions& options, const StandInOptions& stand_in) {
   const std::string what = "stand-in for " + mesh::repeat_text(repeat);
   auto patch = periodic_patch(repeat, library, size, radius);
-  const auto system = make_yarn_system(patch.yarn);
+  // The garment's take-up, for the stitch types this patch has.
+  std::map<std::string, double> take_up_by_type;
+  for (const auto& [type, factor] : stand_in.take_up_by_type)
+    if (std::count(patch.yarn.type_names.begin(), patch.yarn.type_names.end(), type)) take_up_by_type[type] = factor;
+  const auto system = make_yarn_system(patch.yarn, stand_in.take_up, take_up_by_type, options.sampling);
   const auto tiles = mesh::pattern_stitch_mesh(repeat, patch.tiles, patch.tiles, size);
   // The forces the garment's relaxation feels: the patch-tracking ones too (the patch has no border loops).
   auto shape = options.shape;
@@ -87,7 +91,7 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrar
   if (real == 0) throw Error("", what, "the periodic patch has no real point");
   drift /= real;
   // Each place's stitch nearest the patch's middle, found as the garment's are.
-  const auto found = mesh::find_repeats(tiles, max_period);
+  const auto found = mesh::find_repeats(tiles, stand_in.max_period);
   const auto it = std::find_if(found.repeats.begin(), found.repeats.end(), [&](const mesh::Pattern& p) { return p.rows == repeat.rows; });
   if (it == found.repeats.end()) throw Error("", what, "the periodic patch's own stitch mesh does not show the repeat");
   const int r = static_cast<int>(it - found.repeats.begin()), width = repeat.width();
@@ -165,7 +169,7 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
     }
     const std::string text = mesh::repeat_text(repeat);
     spdlog::info("stand-in {}: {} faces, mean stitch {:.3f} x {:.3f} mm", text, faces.size(), mean.width, mean.height);
-    const auto relaxed = relax_repeat(repeat, library, mean, r, options, stand_in.max_period);
+    const auto relaxed = relax_repeat(repeat, library, mean, r, options, stand_in);
     StandInRepeat entry{text, repeat.width(), repeat.height(), static_cast<int>(faces.size()), relaxed.steps, relaxed.converged,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
     // Each point to the patch's point at its place around the same stitch of the repeat: lengths in the

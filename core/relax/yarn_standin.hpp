@@ -1,4 +1,5 @@
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct StandInOptions {
   int min_faces = 12;   ///< fewest faces of one repeat for it to get a patch
   int max_period = 8;   ///< longest repeat looked for, in stitches along the row and along the wale (mesh::find_repeats)
   int reach = 2;        ///< rings of stitches of the pattern's type that join a region beyond it (mesh::find_repeats)
+  double take_up = 1.0; ///< the patches' rest lengths, as the garment's relaxation takes them (make_yarn_system)
+  std::map<std::string, double> take_up_by_type;
   void validate() const;
 };
 

@@ -305,6 +305,15 @@ TEST(Cli, PatternTilesEmitsAndRelaxes) {
   EXPECT_NE(report.find("\"converged\": true"), std::string::npos) << report;
   EXPECT_NE(report.find("\"pull_through_events\": 0"), std::string::npos) << report;
   EXPECT_NE(report.find("\"preview\""), std::string::npos) << report;
+  // Adaptive contact samples, as relax-yarn takes them.
+  r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "adaptive.bcc").string() + " --relax --max-steps 0 --contact-spacing 2.5 --report " +
+                (dir / "a.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(dir / "a.json").find("\"contact_spacing_r\": 2.5"), std::string::npos);
+  r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "refused.bcc").string() + " --relax --contact-spacing 3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("2.828"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused.bcc"));
   // The preview is the 3 x 2 tiling's yarn, placed from the relaxed repeat.
   r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "emitted.bcc").string() + " --tile 3x2");
   ASSERT_EQ(r.status, 0) << r.output;

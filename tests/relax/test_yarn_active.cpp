@@ -1,10 +1,12 @@
 // Modelling no more than the scene needs (issue 10). The active set: forces kept per segment between
 // evaluations give the numbers of a fresh evaluation bit for bit; points sleep when quiet and wake when their
 // force grows or a neighbour moves; a relaxation with the active set ends where one without it does,
-// integrating fewer points. Periodic stand-ins: a relaxed patch mapped over the faces of its stitch type.
+// integrating fewer points. Periodic stand-ins: a relaxed patch mapped over the faces of its repeat.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "relax/yarn_active.hpp"
@@ -160,11 +162,12 @@ TEST(YarnRelax, TheActiveSetEndsWhereAFullRelaxationDoesIntegratingFewerPoints) 
 }
 
 TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatchDoes) {
-  // Flat sheets of stockinette, 2 x 2 rib and seed stitch: their inner faces are exactly their repeat's
-  // periodic patch, so the stand-in must move each of their points as the relaxed patch moved its copy
-  // (tile_relaxed_patch), up to the patch's drift, which the stand-in removes.
+  // Flat sheets of stockinette, 2 x 2 rib (with 90 % of its yarn, and its purls with 95 % of that) and seed
+  // stitch: their inner faces are exactly their repeat's periodic patch, so the stand-in must move each of
+  // their points as the relaxed patch moved its copy (tile_relaxed_patch), up to the patch's drift, which the
+  // stand-in removes.
   const auto& library = mesh::StitchLibrary::bundled();
-  for (const std::string rows : {"k\n", "k k p p\n", "p k\nk p\n"}) {
+  for (const auto& [rows, take_up, purl_take_up] : {std::tuple{std::string("k\n"), 1.0, 1.0}, {"k k p p\n", 0.9, 0.95}, {"p k\nk p\n", 1.0, 1.0}}) {
     SCOPED_TRACE(rows);
     const auto pattern = mesh::parse_pattern("format knit\n" + rows, "test.knit");
     const mesh::StitchSize size;
@@ -175,6 +178,9 @@ TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatc
     options.audit = false;
     StandInOptions stand_in;
     stand_in.min_faces = 1;
+    stand_in.take_up = take_up;
+    stand_in.take_up_by_type = {{"p", purl_take_up}, {"s", 0.5}};  // a type the sheet has not: no error
+    if (purl_take_up == 1.0) stand_in.take_up_by_type.clear();
     StandInReport report;
     const auto preview = stand_in_preview(sheet, yarn, library, options, stand_in, report);
     ASSERT_EQ(report.repeats.size(), 1u);
@@ -185,7 +191,7 @@ TEST(YarnStandIn, OnAFlatSheetTheStandInMovesInteriorPointsAsTheTiledRelaxedPatc
 
     // The reference: the same patch relaxed the same way, tiled.
     auto patch = periodic_patch(pattern, library, size, 0.6);
-    const auto system = make_yarn_system(patch.yarn);
+    const auto system = make_yarn_system(patch.yarn, take_up, purl_take_up == 1.0 ? std::map<std::string, double>{} : std::map<std::string, double>{{"p", purl_take_up}});
     auto shape = options.shape;
     shape.boundary = false;
     ShapeTargets targets = shape_targets(mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size), patch.yarn, shape);
