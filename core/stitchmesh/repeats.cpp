@@ -21,20 +21,15 @@ struct Grid {
   std::vector<std::string> names;        ///< per type id
 
   int at(int f, Step s) const { return f < 0 ? -1 : next[f][static_cast<int>(s)]; }
-  /// The stitch `a` along the row and then `b` up the wale from f; -1 when the walk leaves the grid.
-  int walk(int f, int a, int b) const {
-    for (; a > 0 && f >= 0; --a) f = at(f, Step::Right);
-    for (; a < 0 && f >= 0; ++a) f = at(f, Step::Left);
-    for (; b > 0 && f >= 0; --b) f = at(f, Step::Up);
-    for (; b < 0 && f >= 0; ++b) f = at(f, Step::Down);
-    return f;
-  }
-  /// The same, up the wale first: it meets `walk` where the grid is regular.
-  int walk_wale_first(int f, int a, int b) const {
-    for (; b > 0 && f >= 0; --b) f = at(f, Step::Up);
-    for (; b < 0 && f >= 0; ++b) f = at(f, Step::Down);
-    for (; a > 0 && f >= 0; --a) f = at(f, Step::Right);
-    for (; a < 0 && f >= 0; ++a) f = at(f, Step::Left);
+  /// The stitch `a` along the row and `b` up the wale from f, the row first (or the wale first, which meets it
+  /// where the grid is regular); -1 when the walk leaves the grid.
+  int walk(int f, int a, int b, bool wale_first = false) const {
+    const auto go = [&](int n, Step plus, Step minus) {
+      for (; n != 0 && f >= 0; n += n > 0 ? -1 : 1) f = at(f, n > 0 ? plus : minus);
+    };
+    if (wale_first) go(b, Step::Up, Step::Down);
+    go(a, Step::Right, Step::Left);
+    if (!wale_first) go(b, Step::Up, Step::Down);
     return f;
   }
   int type(int f) const { return f < 0 ? -1 : id[f]; }
@@ -99,7 +94,7 @@ bool fits(const Grid& grid, const std::vector<std::vector<int>>& rows, int f, in
   for (int b = -1; b <= 1; ++b)
     for (int a = -1; a <= 1; ++a) {
       const int g = grid.walk(f, a, b);
-      if (g < 0 || g != grid.walk_wale_first(f, a, b) || grid.type(g) != rows[wrap(row + b, Q)][wrap(column + a, P)]) return false;
+      if (g < 0 || g != grid.walk(f, a, b, true) || grid.type(g) != rows[wrap(row + b, Q)][wrap(column + a, P)]) return false;
     }
   return true;
 }
