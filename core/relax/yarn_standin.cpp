@@ -1,5 +1,6 @@
 #include "relax/yarn_standin.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -105,13 +106,13 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrar
     if (best < 0 || (centroid(f) - middle).norm() < (centroid(best) - middle).norm()) best = f;
   }
   RelaxedRepeat out;
-  const double reach = 2 * (size.width + size.height);
+  const double nearby = 2 * (size.width + size.height);  // a cheap test before the frame's
   for (int f : stitch) {
     if (f < 0) throw Error("", what, "the periodic patch lacks a stitch of the repeat");
     const Bilinear frame(tiles, f);
     std::vector<Vector3d> where, move;
     for (int p = 0; p < system.num_points(); ++p) {
-      if ((system.points.col(p) - centroid(f)).norm() > reach) continue;
+      if ((system.points.col(p) - centroid(f)).norm() > nearby) continue;
       const Vector3d uvh = frame.local(system.points.col(p));
       if (uvh.x() < -1 || uvh.x() > 2 || uvh.y() < -1 || uvh.y() > 2) continue;
       where.push_back(uvh);
