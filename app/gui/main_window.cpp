@@ -27,6 +27,7 @@
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
 #include "viewport.hpp"
+#include "yarn_settings.hpp"
 
 namespace skein::gui {
 namespace {
@@ -257,6 +258,10 @@ void MainWindow::build_actions() {
   m_pause->setEnabled(false);
   m_stop->setEnabled(false);
   relax->addSeparator();
+  add(relax, tr("Yarn &settings..."), "yarnSettings", [this] {
+    YarnSettingsDialog dialog(m_yarn_settings, this);
+    if (dialog.exec() == QDialog::Accepted) set_yarn_settings(dialog.settings());
+  });
   auto* backends = new QActionGroup(this);
   auto* backend_menu = relax->addMenu(tr("Yarn &backend"));
   for (auto [text, name, backend] : {std::tuple{tr("&Auto (GPU when one answers)"), "backendAuto", relax::Backend::Auto},
@@ -606,6 +611,13 @@ void MainWindow::start_job(RelaxJob* job) {
   job->start();
 }
 
+bool MainWindow::set_yarn_settings(const YarnSettings& settings) {
+  return attempt([&] {
+    settings.validate();
+    m_yarn_settings = settings;
+  });
+}
+
 bool MainWindow::relax_mesh() {
   if (job_running()) return false;
   return attempt([&] {
@@ -640,10 +652,12 @@ bool MainWindow::emit_yarn() {
 bool MainWindow::preview_yarn() {
   return stitch_yarn_action([&](const EditState& state) {
     const auto yarn = emitted_yarn(state);
-    relax::YarnRelaxOptions options;
+    auto options = m_yarn_settings.relax;
     options.audit = false;  // the preview is certified on its own straight path from the emission
+    relax::StandInOptions stand_in;
+    stand_in.take_up = m_yarn_settings.take_up;
     relax::StandInReport report;
-    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, {}, report);
+    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, stand_in, report);
     // Not a relaxation: Relax yarn starts from the emission.
     m_doc.set_yarn_preview(relax::with_points(yarn, points), tr("Preview yarn"));
     QStringList repeats;
@@ -665,10 +679,12 @@ bool MainWindow::relax_yarn() {
     if (!state.stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
     if (!state.yarn) throw Error("emit the yarn first (Relax > Emit yarn)");
     if (state.yarn_relaxed) throw Error("the yarn is relaxed already; emit it again to start over");
+    if (m_yarn_settings.relax.active_set.enabled && m_backend == relax::Backend::Cuda)
+      throw Error("the active set runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
     m_job_is_yarn = true;
     // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
     const auto start = state.yarn_preview ? emitted_yarn(state) : *state.yarn;
-    auto* job = new YarnRelaxJob(start, *state.stitch, relax::YarnRelaxOptions{}, m_backend);
+    auto* job = new YarnRelaxJob(start, *state.stitch, m_yarn_settings, m_backend);
     // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn.
     if (state.previous) job->warm_start(state.previous->stitch, state.previous->relaxed);
     start_job(job);
@@ -747,20 +763,23 @@ void MainWindow::on_job_finished() {
   } else if (m_job_is_yarn) {
     auto& yarn_job = static_cast<YarnRelaxJob&>(*job);
     attempt([&] { m_doc.set_yarn(yarn_job.yarn(), true, tr("Relax yarn")); });
-    if (const auto local = yarn_job.local())
-      m_job_label->setText(tr("yarn %1 after %2 steps: %3 changed stitches relaxed locally (%4 rings, %5 points), %6 pull-through events")
-                               .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
+    const QString ended = p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by;
+    const QString audit = p.pull_through < 0 ? tr("not audited") : tr("%1 pull-through events").arg(p.pull_through);
+    if (const auto local = yarn_job.local()) {
+      m_job_label->setText(tr("yarn %1 after %2 steps: %3 changed stitches relaxed locally (%4 rings, %5 points), %6")
+                               .arg(ended)
                                .arg(p.step)
                                .arg(local->changed_stitches)
                                .arg(local->rings)
                                .arg(local->relaxed_points)
-                               .arg(p.pull_through));
-    else
-      m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4 pull-through events")
-                               .arg(p.stopped_by == "interrupted" ? tr("stopped") : p.stopped_by)
-                               .arg(p.step)
-                               .arg(yarn_job.backend())
-                               .arg(p.pull_through));
+                               .arg(audit));
+    } else {
+      QString active;
+      if (const auto a = yarn_job.active_set(); a && p.step > 0)
+        active = tr(", %1 % of the point-steps integrated (active set)")
+                     .arg(100.0 * a->point_steps / (static_cast<double>(p.step) * yarn_job.yarn().points.size()), 0, 'f', 1);
+      m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4%5").arg(ended).arg(p.step).arg(yarn_job.backend()).arg(audit).arg(active));
+    }
   } else {
     auto& mesh_job = static_cast<MeshRelaxJob&>(*job);
     attempt([&] { m_doc.set_relaxed_mesh(mesh_job.stitch(), mesh_job.rest()); });

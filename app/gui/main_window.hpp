@@ -71,6 +71,11 @@ public:
   bool fill_selection(const QString& fill);  ///< a parse_fill name: rib, rib2x2, garter, seed, moss, ...
   bool mark_cable_on_selection(int order);   ///< cable over the top edges of a selected run in one row; order +1 front, -1 behind
 
+  /// What Relax yarn and Preview yarn run with (Relax > Yarn settings); false, with an error shown, for values
+  /// out of range.
+  bool set_yarn_settings(const YarnSettings& settings);
+  const YarnSettings& yarn_settings() const { return m_yarn_settings; }
+
   bool relax_mesh();
   bool emit_yarn();
   bool relax_yarn();
@@ -123,6 +128,7 @@ private:
   std::unique_ptr<RelaxJob> m_job;
   bool m_job_is_yarn = false, m_paused = false;
   relax::Backend m_backend = relax::Backend::Auto;
+  YarnSettings m_yarn_settings;
   QElapsedTimer m_live_clock;  ///< since the last live redraw
   qint64 m_live_wait = 0;      ///< [ms] before the next one
   QElapsedTimer m_status_clock;  ///< since the job's progress was last shown

@@ -81,9 +81,16 @@ void MeshRelaxJob::run() {
   emit updated();
 }
 
-YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
+YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const YarnSettings& settings, relax::Backend backend,
                            QObject* parent)
-    : RelaxJob(parent), m_yarn(std::move(yarn)), m_stitch(stitch), m_system(relax::make_yarn_system(m_yarn)), m_options(options), m_backend(backend) {
+    : RelaxJob(parent),
+      m_yarn(std::move(yarn)),
+      m_stitch(stitch),
+      m_system(relax::make_yarn_system(m_yarn, settings.take_up, {}, settings.relax.sampling)),
+      m_options(settings.relax),
+      m_take_up(settings.take_up),
+      m_local_options(settings.local),
+      m_backend(backend) {
   m_targets = relax::shape_targets(stitch, m_yarn, m_options.shape);
   m_options.interrupt = &m_interrupt;
   m_progress.max_steps = m_options.max_steps;
@@ -109,6 +116,11 @@ void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const mes
 std::optional<relax::LocalRelaxReport> YarnRelaxJob::local() const {
   std::lock_guard lock(m_mutex);
   return m_local;
+}
+
+std::optional<relax::ActiveSetCounters> YarnRelaxJob::active_set() const {
+  std::lock_guard lock(m_mutex);
+  return m_active;
 }
 
 mesh::YarnCurves YarnRelaxJob::yarn() const {
@@ -143,7 +155,7 @@ void YarnRelaxJob::run() {
     if (m_splice) {
       // After stitch edits: the changed stitches and rings around them, from the previous relaxed yarn.
       relax::LocalRelaxReport local;
-      const auto points = relax::relax_locally(m_stitch, m_yarn, *m_splice, m_options, {}, 1.0, {}, local);
+      const auto points = relax::relax_locally(m_stitch, m_yarn, *m_splice, m_options, m_local_options, m_take_up, {}, local);
       m_splice.reset();
       if (local.stopped_by != "unsafe splice") {
         std::lock_guard lock(m_mutex);
@@ -178,6 +190,7 @@ void YarnRelaxJob::run() {
     m_progress.converged = report.converged;
     m_progress.stopped_by = QString::fromStdString(report.stopped_by);
     m_progress.pull_through = report.pull_through_events;
+    if (m_options.active_set.enabled) m_active = report.active;
   } catch (const std::exception& e) {
     fail(QString::fromStdString(e.what()));
   }

@@ -12,6 +12,7 @@
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_local.hpp"
 #include "relax/yarn_relax.hpp"
+#include "yarn_settings.hpp"
 
 namespace skein::gui {
 
@@ -78,17 +79,19 @@ private:
 class YarnRelaxJob final : public RelaxJob {
   Q_OBJECT
 public:
-  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, relax::YarnRelaxOptions options, relax::Backend backend,
+  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const YarnSettings& settings, relax::Backend backend,
                QObject* parent = nullptr);
   ~YarnRelaxJob() override;
   /// Before the first start: begin from `previous_relaxed`, the relaxed yarn of `previous_stitch`, and relax
-  /// only the stitches changed since and rings around them (relax::relax_locally, on the CPU). A splice that
+  /// only the stitches changed since and the settings' rings around them (relax::relax_locally, on the CPU). A splice that
   /// would pass yarn through yarn is not used: the whole yarn relaxes then.
   void warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed);
   mesh::YarnCurves yarn() const;  ///< the latest points
   QString backend() const;
   /// What the local relaxation did, once it ran.
   std::optional<relax::LocalRelaxReport> local() const;
+  /// With the active set: what it did, once the whole yarn ran.
+  std::optional<relax::ActiveSetCounters> active_set() const;
 
 protected:
   void run() override;
@@ -100,9 +103,12 @@ private:
   mesh::StitchMesh m_stitch;
   std::optional<relax::Splice> m_splice;          ///< a warm start not yet run
   std::optional<relax::LocalRelaxReport> m_local;  ///< a warm start run
+  std::optional<relax::ActiveSetCounters> m_active;  ///< a whole run with the active set
   relax::YarnSystem m_system;
   relax::ShapeTargets m_targets;
   relax::YarnRelaxOptions m_options;
+  double m_take_up;
+  relax::LocalRelaxOptions m_local_options;
   relax::Backend m_backend;
   std::unique_ptr<relax::YarnRelaxer> m_relaxer;  ///< made on the first run, kept for resuming
   relax::YarnState m_state;

@@ -3,6 +3,11 @@
 // a screenshot to $SKEIN_GUI_SHOTS (or a temporary folder) and checks that it is not blank.
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QPushButton>
+#include <QSpinBox>
 #include <QDir>
 #include <QImage>
 #include <QMouseEvent>
@@ -19,6 +24,7 @@
 #include "render/stitch_view.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "viewport.hpp"
+#include "yarn_settings.hpp"
 
 using namespace skein;
 using gui::MainWindow;
@@ -338,6 +344,52 @@ private slots:
     // A new stitch mesh has no yarn to start from.
     action(w, "generate")->trigger();
     QVERIFY(!doc.state().previous.has_value());
+  }
+
+  void yarn_settings_reach_the_relaxation() {
+    // The dialog shows the settings and gives back what its fields hold; Restore Defaults resets them.
+    gui::YarnSettings chosen;
+    chosen.take_up = 0.95;
+    gui::YarnSettingsDialog dialog(chosen);
+    QCOMPARE(dialog.findChild<QDoubleSpinBox*>("takeUp")->value(), 0.95);
+    QVERIFY(!dialog.findChild<QDoubleSpinBox*>("contactSpacing")->isEnabled());
+    dialog.findChild<QCheckBox*>("activeSet")->setChecked(true);
+    dialog.findChild<QCheckBox*>("adaptiveSamples")->setChecked(true);
+    QVERIFY(dialog.findChild<QDoubleSpinBox*>("contactSpacing")->isEnabled());
+    dialog.findChild<QDoubleSpinBox*>("contactSpacing")->setValue(2.5);
+    dialog.findChild<QSpinBox*>("rings")->setValue(2);
+    QVERIFY(dialog.grab().save(QDir(shots_dir()).filePath("gui-yarn-settings.png")));
+    const auto settings = dialog.settings();
+    QVERIFY(settings.relax.active_set.enabled);
+    QCOMPARE(settings.relax.sampling.spacing, 2.5);
+    QCOMPARE(settings.take_up, 0.95);
+    QCOMPARE(settings.local.rings, 2);
+    dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::RestoreDefaults)->click();
+    QVERIFY(!dialog.settings().relax.active_set.enabled);
+    QCOMPARE(dialog.settings().relax.sampling.spacing, 0.0);
+    QCOMPARE(dialog.settings().take_up, 1.0);
+
+    MainWindow w;
+    QVERIFY(swatch_yarn_shown(w));
+    // Values out of range are refused with the rule broken, and the settings stay.
+    auto bad = settings;
+    bad.relax.sampling.spacing = 3.5;
+    QVERIFY(!w.set_yarn_settings(bad));
+    QVERIFY2(w.last_error().contains("spacing"), qPrintable(w.last_error()));
+    QCOMPARE(w.yarn_settings().relax.sampling.spacing, 0.0);
+    QVERIFY(w.set_yarn_settings(settings));
+    // The active set is the CPU relaxer's: with the CUDA backend chosen the relaxation is refused.
+    action(w, "backendCuda")->trigger();
+    QVERIFY(!w.relax_yarn());
+    QVERIFY2(w.last_error().contains("CPU only"), qPrintable(w.last_error()));
+    action(w, "backendCpu")->trigger();
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(300000));
+    QVERIFY2(w.job_text().contains("(active set)") && w.job_text().contains(", 0 pull-through events"), qPrintable(w.job_text()));
+    // The preview takes the settings too (the patches' take-up and samples).
+    QVERIFY(w.emit_yarn());
+    QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
   }
 
   void yarn_preview_maps_stand_ins_without_relaxing() {

@@ -1,0 +1,128 @@
+#include "yarn_settings.hpp"
+
+#include <algorithm>
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QVBoxLayout>
+
+#include "common/error.hpp"
+
+namespace skein::gui {
+
+void YarnSettings::validate() const {
+  relax.validate();
+  local.validate();
+  if (!(take_up >= 0.1 && take_up <= 10)) throw Error("", "yarn settings", "the take-up must be between 0.1 and 10, found " + std::to_string(take_up));
+}
+
+namespace {
+
+QDoubleSpinBox* number(const char* name, double low, double high, double step, int decimals, double value, const QString& tip) {
+  auto* box = new QDoubleSpinBox;
+  box->setObjectName(name);
+  box->setRange(low, high);
+  box->setSingleStep(step);
+  box->setDecimals(decimals);
+  box->setValue(value);
+  box->setToolTip(tip);
+  return box;
+}
+
+QSpinBox* count(const char* name, int low, int high, int value, const QString& tip) {
+  auto* box = new QSpinBox;
+  box->setObjectName(name);
+  box->setRange(low, high);
+  box->setValue(value);
+  box->setToolTip(tip);
+  return box;
+}
+
+QCheckBox* flag(const char* name, const QString& text, bool value, const QString& tip) {
+  auto* box = new QCheckBox(text);
+  box->setObjectName(name);
+  box->setChecked(value);
+  box->setToolTip(tip);
+  return box;
+}
+
+}  // namespace
+
+YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* parent) : QDialog(parent), m_base(settings) {
+  setWindowTitle(tr("Yarn settings"));
+  const auto& r = settings.relax;
+  m_method = new QComboBox;
+  m_method->setObjectName("method");
+  m_method->addItem(tr("FIRE (quasi-static, fast)"), static_cast<int>(relax::YarnMethod::Fire));
+  m_method->addItem(tr("Euler (Leaf 2018, Algorithm 1)"), static_cast<int>(relax::YarnMethod::Euler));
+  m_method->setCurrentIndex(m_method->findData(static_cast<int>(r.method)));
+  m_tolerance = number("tolerance", 1e-4, 0.5, 0.005, 4, r.tolerance, tr("Stop when |∇E| / |∇E₀| is below this (Leaf eq. 5, ε1)"));
+  m_max_steps = count("maxSteps", 1, 1000000, static_cast<int>(std::min<long>(r.max_steps, 1000000)), tr("Stop after this many steps"));
+  m_take_up = number("takeUp", 0.1, 10, 0.01, 3, settings.take_up, tr("Rest length of the yarn × its emitted length: below 1 the yarn pulls tighter"));
+  m_audit = flag("audit", tr("Audit every step for pull-through"), r.audit,
+                 tr("The independent topology auditor checks every step; off, the guard still prevents pull-through but no count is reported"));
+  m_active_set = flag("activeSet", tr("Active set: converged points stop being integrated (CPU)"), r.active_set.enabled,
+                      tr("Points whose force and moves have settled sleep until their force grows or a neighbour moves; the stop rule still "
+                         "sees every point. Pays where convergence is uneven, as after local edits."));
+  m_adaptive = flag("adaptiveSamples", tr("Adaptive contact samples"), r.sampling.spacing > 0,
+                    tr("The fewest contact samples per segment that leave no gap of yarn longer than the spacing; off, Leaf's odd count over L / 2r"));
+  m_spacing = number("contactSpacing", 0.5, relax::ContactSampling::kMaxCoveringSpacing, 0.1, 2, r.sampling.spacing > 0 ? r.sampling.spacing : 2.5,
+                     tr("Largest gap of yarn between two contact samples, × yarn radius (at most 2√2, where contact is still felt before "
+                        "one yarn can pass another)"));
+  m_spacing->setEnabled(m_adaptive->isChecked());
+  connect(m_adaptive, &QCheckBox::toggled, m_spacing, &QWidget::setEnabled);
+  m_rings = count("rings", 0, settings.local.max_rings, settings.local.rings,
+                  tr("After stitch edits: rings of stitches around the changed ones that relax (grown while the outermost still moves)"));
+  m_halo = count("halo", 1, 8, settings.local.halo, tr("After stitch edits: rings beyond those, held in place"));
+
+  auto* form = new QFormLayout;
+  form->addRow(tr("Method"), m_method);
+  form->addRow(tr("Stop tolerance"), m_tolerance);
+  form->addRow(tr("Step cap"), m_max_steps);
+  form->addRow(tr("Take-up"), m_take_up);
+  form->addRow(m_audit);
+  form->addRow(m_active_set);
+  form->addRow(m_adaptive);
+  form->addRow(tr("Contact spacing [r]"), m_spacing);
+  form->addRow(tr("Rings after edits"), m_rings);
+  form->addRow(tr("Held rings"), m_halo);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel | QDialogButtonBox::RestoreDefaults);
+  connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+  connect(buttons->button(QDialogButtonBox::RestoreDefaults), &QPushButton::clicked, this, [this] {
+    const YarnSettings defaults;
+    m_method->setCurrentIndex(m_method->findData(static_cast<int>(defaults.relax.method)));
+    m_tolerance->setValue(defaults.relax.tolerance);
+    m_max_steps->setValue(static_cast<int>(defaults.relax.max_steps));
+    m_take_up->setValue(defaults.take_up);
+    m_audit->setChecked(defaults.relax.audit);
+    m_active_set->setChecked(defaults.relax.active_set.enabled);
+    m_adaptive->setChecked(false);
+    m_rings->setValue(defaults.local.rings);
+    m_halo->setValue(defaults.local.halo);
+  });
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addWidget(buttons);
+}
+
+YarnSettings YarnSettingsDialog::settings() const {
+  YarnSettings s = m_base;
+  s.relax.method = static_cast<relax::YarnMethod>(m_method->currentData().toInt());
+  s.relax.tolerance = m_tolerance->value();
+  s.relax.max_steps = m_max_steps->value();
+  s.take_up = m_take_up->value();
+  s.relax.audit = m_audit->isChecked();
+  s.relax.active_set.enabled = m_active_set->isChecked();
+  s.relax.sampling.spacing = m_adaptive->isChecked() ? m_spacing->value() : 0;
+  s.local.rings = m_rings->value();
+  s.local.halo = m_halo->value();
+  return s;
+}
+
+}  // namespace skein::gui

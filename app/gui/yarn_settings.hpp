@@ -1,0 +1,41 @@
+#pragma once
+
+#include <QDialog>
+
+#include "relax/yarn_local.hpp"
+#include "relax/yarn_relax.hpp"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QSpinBox;
+
+namespace skein::gui {
+
+/// What Relax yarn (whole or local after edits) and the stand-in preview run with: the CLI's relax-yarn options
+/// that an artist sets in Relax > Yarn settings.
+struct YarnSettings {
+  relax::YarnRelaxOptions relax;   ///< method, stop rule, audit, active set, contact sampling
+  double take_up = 1.0;            ///< rest length of the yarn × its emitted length (relax::make_yarn_system)
+  relax::LocalRelaxOptions local;  ///< rings relaxed and held after stitch edits
+  void validate() const;           ///< throws skein::Error for a value out of range
+};
+
+/// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, takeUp,
+/// audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
+class YarnSettingsDialog final : public QDialog {
+  Q_OBJECT
+public:
+  explicit YarnSettingsDialog(const YarnSettings& settings, QWidget* parent = nullptr);
+  /// The settings as the fields show them; what they do not show stays as given.
+  YarnSettings settings() const;
+
+private:
+  YarnSettings m_base;
+  QComboBox* m_method = nullptr;
+  QDoubleSpinBox *m_tolerance = nullptr, *m_take_up = nullptr, *m_spacing = nullptr;
+  QSpinBox *m_max_steps = nullptr, *m_rings = nullptr, *m_halo = nullptr;
+  QCheckBox *m_audit = nullptr, *m_active_set = nullptr, *m_adaptive = nullptr;
+};
+
+}  // namespace skein::gui
