@@ -126,6 +126,7 @@ struct Scalars {
   long positive;
   double residual0, residual_prev, residual, energy;
   double keep, mix, dt, scale, moved_since_rebuild;
+  double least;  ///< the smallest factor the guard's halvings left on a point's move in this step
   int halt;  ///< Halt
   int guard_done, guard_mode, hits, hold_all;
   int guard_pairs;
@@ -160,7 +161,7 @@ struct Dev {
   float k_normal, k_far, threshold, k_tangent;
   // Border loops (eq. 5) and the guard's groups.
   const int *loop_start, *loop_points, *group;
-  int *hold, *hold_group;
+  int *hold, *hold_group;  ///< per point and per group: the last guard round that marked it (round + 1), 0 for none
   // The guard's pairs.
   const int *pair_a, *pair_b;
   float *budget, *new_budget;
@@ -389,6 +390,7 @@ __global__ void k_guard_begin(Dev d) {
   ++sc.counters[kSteps];
   const double largest = finish(d, kRateMove, true);
   sc.scale = 1;
+  sc.least = 1;
   if (largest > d.limit) {
     ++sc.counters[kRateLimited];
     sc.scale = d.limit / largest;
@@ -470,7 +472,8 @@ __global__ void k_guard_test(Dev d) {
   }
 }
 
-/// After a round: done, or halve the step, or hold the points of the pairs still hit, or (out of rounds) hold all.
+/// After a round: done, or halve the moves of the points of the pairs still hit, or hold those points, or (out of
+/// rounds) hold all.
 __global__ void k_guard_decide(Dev d, int round) {
   Scalars& sc = *d.sc;
   if (sc.halt || sc.guard_done) return;
@@ -483,7 +486,7 @@ __global__ void k_guard_decide(Dev d, int round) {
   sc.hits = 0;
   if (round < d.max_halvings) {
     ++sc.counters[kHalvings];
-    sc.scale *= 0.5;
+    sc.least *= 0.5;
     sc.guard_mode = kHalve;
   } else if (round < d.max_halvings + kHoldRounds) {
     sc.guard_mode = kHold;
@@ -493,46 +496,48 @@ __global__ void k_guard_decide(Dev d, int round) {
   }
 }
 
-__global__ void k_guard_mark(Dev d, int capacity) {
+/// The points of the pairs still hit, and their groups, marked with the round's stamp (round + 1): only their
+/// moves change in this round.
+__global__ void k_guard_mark(Dev d, int capacity, int round) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   const Scalars& sc = *d.sc;
-  if (sc.halt || sc.guard_done || sc.guard_mode != kHold || i >= capacity || i >= sc.guard_pairs || !d.hit[i]) return;
+  if (sc.halt || sc.guard_done || sc.guard_mode == kNone || i >= capacity || i >= sc.guard_pairs || !d.hit[i]) return;
   int p[8];
   pair_points(d, i, p);
   for (int k = 0; k < 8; ++k) {
-    d.hold[p[k]] = 1;
-    if (d.group[p[k]] >= 0) d.hold_group[d.group[p[k]]] = 1;
+    d.hold[p[k]] = round + 1;
+    if (d.group[p[k]] >= 0) d.hold_group[d.group[p[k]]] = round + 1;
   }
 }
 
-__global__ void k_guard_points(Dev d) {
+/// Halves or holds the marked points' moves; the rest of the yarn keeps its whole step.
+__global__ void k_guard_points(Dev d, int round) {
   SKEIN_INDEX(d.num_points);
   const Scalars& sc = *d.sc;
-  if (sc.guard_done) return;
-  if (sc.guard_mode == kHalve) d.delta.store(i, d.delta(i) * 0.5f);
-  if (sc.guard_mode != kHold) return;
-  if (!d.hold[i] && !(d.group[i] >= 0 && d.hold_group[d.group[i]])) return;
-  d.hold[i] = 1;
+  if (sc.guard_done || sc.guard_mode == kNone) return;
+  if (d.hold[i] != round + 1 && !(d.group[i] >= 0 && d.hold_group[d.group[i]] == round + 1)) return;
+  d.hold[i] = round + 1;
   const V delta = d.delta(i);
+  if (sc.guard_mode == kHalve) {
+    // Each point moves on a straight line, so a halved move is the first half of the same path.
+    d.delta.store(i, delta * 0.5f);
+    return;
+  }
   if (model::dot(delta, delta) > 0) atomicAdd(&d.sc->counters[kHeldPoints], 1ull);
   d.delta.store(i, V{0, 0, 0});
 }
 
-__global__ void k_guard_pairs(Dev d, int capacity) {
+/// Pairs of unmarked points keep their paths and stay clean; pairs with a point marked in this round are tested
+/// again.
+__global__ void k_guard_pairs(Dev d, int capacity, int round) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   const Scalars& sc = *d.sc;
-  if (sc.halt || sc.guard_done || i >= capacity || i >= sc.guard_pairs) return;
-  if (sc.guard_mode == kHalve) {
-    // The halved step is the first half of the same straight paths: clean pairs stay clean.
-    d.retest[i] = d.hit[i];
-    if (!d.hit[i]) d.new_budget[i] = -1;
-  } else if (sc.guard_mode == kHold) {
-    int p[8];
-    pair_points(d, i, p);
-    char any = 0;
-    for (int k = 0; k < 8; ++k) any |= static_cast<char>(d.hold[p[k]]);
-    d.retest[i] = any;
-  }
+  if (sc.halt || sc.guard_done || sc.guard_mode == kNone || i >= capacity || i >= sc.guard_pairs) return;
+  int p[8];
+  pair_points(d, i, p);
+  char any = 0;
+  for (int k = 0; k < 8; ++k) any |= static_cast<char>(d.hold[p[k]] == round + 1);
+  d.retest[i] = any;
 }
 
 // ---- commit ----
@@ -549,7 +554,7 @@ __global__ void k_commit(Dev d) {
   d.travel[i] += model::norm(delta);
   d.x.store(i, d.x(i) + delta);
   // The velocity that matches the move the guard let through.
-  if (sc.hold_all || sc.scale < 1) d.v.store(i, delta * static_cast<float>(1.0 / sc.dt));
+  if (sc.hold_all || sc.scale * sc.least < 1) d.v.store(i, delta * static_cast<float>(1.0 / sc.dt));
 }
 
 /// Clean pairs restart their safe bounds from here.
@@ -573,7 +578,7 @@ __global__ void k_end_step(Dev d) {
     log.step = sc.step;
     log.energy = sc.energy;
     log.residual = sc.residual / sc.residual0;
-    log.time_step = sc.hold_all ? 0.0 : sc.dt * sc.scale;
+    log.time_step = sc.hold_all ? 0.0 : sc.dt * sc.scale * sc.least;
     log.moved = moved;
     log.contacts = sc.contacts;
     log.guard_hits = static_cast<long>(sc.counters[kFinestHits] - sc.finest_before);
@@ -848,9 +853,9 @@ struct DeviceYarn::Impl {
       for (int round = 0; round <= options.guard.max_halvings + kHoldRounds; ++round) {
         k_guard_test<<<gb, kThreads, 0, stream>>>(d);
         k_guard_decide<<<1, 1, 0, stream>>>(d, round);
-        k_guard_mark<<<gb, kThreads, 0, stream>>>(d, guard_capacity());
-        k_guard_points<<<pb, kThreads, 0, stream>>>(d);
-        k_guard_pairs<<<gb, kThreads, 0, stream>>>(d, guard_capacity());
+        k_guard_mark<<<gb, kThreads, 0, stream>>>(d, guard_capacity(), round);
+        k_guard_points<<<pb, kThreads, 0, stream>>>(d, round);
+        k_guard_pairs<<<gb, kThreads, 0, stream>>>(d, guard_capacity(), round);
       }
     k_commit<<<pb, kThreads, 0, stream>>>(d);
     k_commit_budgets<<<gb, kThreads, 0, stream>>>(d, guard_capacity());

@@ -70,6 +70,7 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
   const int n = static_cast<int>(m_pairs.size());
   std::vector<double> new_budget(n, -1.0);
   std::vector<char> hit(n, 0), retest(n, 1);
+  double least = 1;  ///< the smallest factor the halvings left on a point's move
   for (int round = 0; m_options.enabled; ++round) {
     const Eigen::VectorXd move = delta.colwise().norm().transpose();
     long tested = 0, skipped = 0, tests = 0, hits = 0;
@@ -104,45 +105,44 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
     m_counters.sphere_tests += tests;
     if (hits == 0) break;
     m_counters.finest_hits += hits;
-    if (round < m_options.max_halvings) {
-      // Every point moves on a straight line, so the halved step is the first half of the same path: pairs
-      // that were clean stay clean and only the hit ones are tested again. Their safe bounds were measured at
-      // the end of the longer step, so they are dropped.
-      ++m_counters.halvings;
-      scale *= 0.5;
-      delta *= 0.5;
-      for (int i = 0; i < n; ++i) {
-        retest[i] = hit[i];
-        if (!hit[i]) new_budget[i] = -1.0;
-      }
-      continue;
-    }
-    // Out of halvings: hold the points of the pairs still hit (and their groups) for this step.
-    std::vector<char> hold(m_system.num_points(), 0);
-    std::vector<char> hold_group;
+    // The points of the pairs still hit, with their groups (a boundary loop's points move as one).
+    std::vector<char> mark(m_system.num_points(), 0), mark_group;
     for (int i = 0; i < n; ++i)
       if (hit[i])
         for (int side = 0; side < 2; ++side)
           for (int k = 0; k < 4; ++k) {
             const int p = m_system.segment_points[side == 0 ? m_pairs[i].a : m_pairs[i].b][k];
-            hold[p] = 1;
+            mark[p] = 1;
             if (m_groups[p] >= 0) {
-              if (hold_group.size() <= static_cast<size_t>(m_groups[p])) hold_group.resize(m_groups[p] + 1, 0);
-              hold_group[m_groups[p]] = 1;
+              if (mark_group.size() <= static_cast<size_t>(m_groups[p])) mark_group.resize(m_groups[p] + 1, 0);
+              mark_group[m_groups[p]] = 1;
             }
           }
+    const bool halve = round < m_options.max_halvings;
+    if (halve) {
+      ++m_counters.halvings;
+      least = std::min(least, std::ldexp(1.0, -(round + 1)));
+    }
     for (int p = 0; p < m_system.num_points(); ++p) {
-      hold[p] = hold[p] || (m_groups[p] >= 0 && static_cast<size_t>(m_groups[p]) < hold_group.size() && hold_group[m_groups[p]]);
-      if (hold[p]) {
+      mark[p] = mark[p] || (m_groups[p] >= 0 && static_cast<size_t>(m_groups[p]) < mark_group.size() && mark_group[m_groups[p]]);
+      if (!mark[p]) continue;
+      if (halve) {
+        // Each point moves on a straight line, so a halved move is the first half of the same path.
+        delta.col(p) *= 0.5;
+      } else {
+        // Out of halvings: the point stays put for this step.
         if (delta.col(p).squaredNorm() > 0) ++m_counters.held_points;
         delta.col(p).setZero();
       }
     }
-    // Pairs with a held point now move differently: test them again.
+    // Only the marked points' moves changed: pairs of unmarked points keep their paths and stay clean, and the
+    // rest of the yarn keeps its whole step. Pairs with a marked point are tested again; their safe bounds, if
+    // any, were measured on the longer moves.
     for (int i = 0; i < n; ++i) {
       retest[i] = 0;
       for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 4; ++k) retest[i] |= hold[m_system.segment_points[side == 0 ? m_pairs[i].a : m_pairs[i].b][k]];
+        for (int k = 0; k < 4; ++k) retest[i] |= mark[m_system.segment_points[side == 0 ? m_pairs[i].a : m_pairs[i].b][k]];
+      if (retest[i]) new_budget[i] = -1.0;
     }
   }
   // Commit: travel grows by what each point moves; clean pairs restart their safe bounds from here.
@@ -155,7 +155,7 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
       for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 4; ++k) pair.travel[side * 4 + k] = m_travel[m_system.segment_points[side == 0 ? pair.a : pair.b][k]];
     }
-  return delta.cwiseAbs().maxCoeff() > 0 ? scale : 0.0;
+  return delta.cwiseAbs().maxCoeff() > 0 ? scale * least : 0.0;
 }
 
 }  // namespace skein::relax

@@ -12,7 +12,7 @@ struct GuardOptions {
   bool enabled = true;       ///< off: only the movement limit holds (for measuring what the guard costs)
   double max_move = 0.25;    ///< ε: no point of any yarn moves more than ε r in one step (at most half the contact margin)
   int max_depth = 10;        ///< bounding-sphere refinement levels (pieces of 1/2^depth of a segment)
-  int max_halvings = 6;      ///< step halvings before the points of still-hit pairs are held for the step
+  int max_halvings = 6;      ///< halvings of the still-hit pairs' moves before their points are held for the step
   bool safe_bounds = true;   ///< Yuksel eqs. 8–10: skip pairs whose points stay inside their safe movement
   void validate() const;     ///< throws skein::Error for values out of range
 };
@@ -25,7 +25,7 @@ struct GuardCounters {
   long pairs_skipped = 0;  ///< pairs skipped because every point stayed inside its safe bound
   long sphere_tests = 0;   ///< sphere-against-sphere tests over the step
   long finest_hits = 0;    ///< pairs whose spheres still met at the finest level
-  long halvings = 0;       ///< steps halved because of such hits
+  long halvings = 0;       ///< rounds that halved the moves of such pairs' points
   long held_points = 0;    ///< points held in place for a step after the halvings ran out
 };
 
@@ -33,9 +33,10 @@ struct GuardCounters {
 /// control point and returns one no yarn can pass through another with. First every point's movement is
 /// limited to ε r, so only pairs already in contact can pass through each other; for those (the contact
 /// pairs), bounding spheres of both segments swept over the step are tested and refined hierarchically; a hit
-/// at the finest level halves the step; after `max_halvings`, the points of pairs still hit stay put for
-/// this step. Pairs that come through clean leave safe movement bounds (Yuksel eqs. 8–10) that let later
-/// steps skip them while their points stay inside.
+/// at the finest level halves the moves of the hit pair's points (the rest of the yarn keeps its whole step,
+/// so one jammed pair does not slow the whole garment); after `max_halvings`, the points of pairs still hit
+/// stay put for this step. Pairs that come through clean leave safe movement bounds (Yuksel eqs. 8–10) that
+/// let later steps skip them while their points stay inside.
 class PullThroughGuard {
 public:
   /// `groups`: per point a group id or -1; holding one point of a group holds the whole group (boundary loops
@@ -45,8 +46,8 @@ public:
   /// A new pair set (after the contact cache is rebuilt): every pair is tested again. Pairs of one piece of
   /// yarn (YarnSystem::adjacent) are left out.
   void reset(const ContactPairs& pairs);
-  /// Makes `delta` [mm] safe to add to `points` in place; returns the factor the step was scaled by
-  /// (1 when untouched, 0 when only held points would have moved).
+  /// Makes `delta` [mm] safe to add to `points` in place; returns at most the smallest factor a point's move
+  /// was scaled by (1 when untouched, 0 when only held points would have moved).
   double accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd& delta);
 
   const GuardCounters& counters() const { return m_counters; }

@@ -104,6 +104,38 @@ TEST(PullThroughGuard, StopsARingDraggedThroughAnother) {
   EXPECT_NEAR(std::abs(linking_number(curve_points(moved, 0), curve_points(moved, 1))), 1.0, 1e-6);
 }
 
+TEST(PullThroughGuard, AJammedPairSlowsOnlyItsOwnPoints) {
+  // Ring B pushed across ring A's yarn jams against it; ring C, far from both, moves as far each step and keeps
+  // its whole move: the halvings and holds are the jammed pairs' points' only.
+  auto yarn = skein::testing::linked_rings();
+  skein::testing::add_ring(yarn, {0, 40, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, 24);
+  const auto system = make_yarn_system(yarn);
+  GuardOptions options;
+  options.max_move = 1.0;
+  PullThroughGuard guard(system, options);
+  TopologyAuditor auditor(system);
+  Eigen::Matrix3Xd points = system.points;
+  const double push = options.max_move * system.radius;  // at the movement limit, so no step is rate-limited
+  long jammed = 0, crossings = 0;
+  for (int step = 0; step < 100; ++step) {
+    Eigen::Matrix3Xd delta = Eigen::Matrix3Xd::Zero(3, system.num_points());
+    for (int p = yarn.curve_start[1]; p < yarn.curve_start[3]; ++p) delta(0, p) = push;
+    guard.reset(find_contact_pairs(system, points, 4 * system.radius));
+    const long hits = guard.counters().finest_hits;
+    guard.accept(points, delta);
+    for (int p = yarn.curve_start[2]; p < yarn.curve_start[3]; ++p) ASSERT_EQ(delta(0, p), push) << "step " << step;
+    if (guard.counters().finest_hits > hits) {
+      ++jammed;
+      EXPECT_LT(delta.middleCols(yarn.curve_start[1], yarn.curve_size(1)).row(0).minCoeff(), push);
+    }
+    crossings += static_cast<long>(auditor.crossings(points, points + delta).size());
+    points += delta;
+  }
+  EXPECT_GT(jammed, 0);
+  EXPECT_GT(guard.counters().halvings, 0);
+  EXPECT_EQ(crossings, 0);
+}
+
 TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
   const auto yarn = skein::testing::linked_rings();
   const auto system = make_yarn_system(yarn, 0.3);
