@@ -8,7 +8,7 @@ source "$(dirname "$0")/common.sh"
 runs=${1:-1}
 shift || true
 configs=("$@")
-[ ${#configs[@]} -gt 0 ] || configs=(1:1:1 1:2:2 0.2:1:1 5:1:1)  # percent repainted, rings, halo
+[ ${#configs[@]} -gt 0 ] || configs=(1:1:1 1:2:2 0.2:1:1 5:1:1 2:1:1)  # percent repainted, rings, halo
 mesh_relaxed mitten "$tmp/mitten-relaxed.skein"
 header=1
 for i in $(seq "$runs"); do

@@ -68,7 +68,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
                  tr("The independent topology auditor checks every step; off, the guard still prevents pull-through but no count is reported"));
   m_active_set = flag("activeSet", tr("Active set: converged points stop being integrated (CPU)"), r.active_set.enabled,
                       tr("Points whose force and moves have settled sleep until their force grows or a neighbour moves; the stop rule still "
-                         "sees every point. Pays where convergence is uneven, as after local edits."));
+                         "sees every point"));
   m_adaptive = flag("adaptiveSamples", tr("Adaptive contact samples"), r.sampling.spacing > 0,
                     tr("The fewest contact samples per segment that leave no gap of yarn longer than the spacing; off, Leaf's odd count over L / 2r"));
   m_spacing = number("contactSpacing", 0.5, relax::ContactSampling::kMaxCoveringSpacing, 0.1, 2, r.sampling.spacing > 0 ? r.sampling.spacing : 2.5,
