@@ -282,6 +282,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
             {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
             {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
             {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
+            {"first_residual_peak", report.first_residual_peak < 0 ? json(nullptr) : json(report.first_residual_peak)},
             {"guard_events", guard_json(report.guard)},
             {"pull_through_events", report.pull_through_events < 0 ? json(nullptr) : json(report.pull_through_events)},
             {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},

@@ -778,7 +778,14 @@ void MainWindow::on_job_finished() {
       if (const auto a = yarn_job.active_set(); a && p.step > 0)
         active = tr(", %1 % of the point-steps integrated (active set)")
                      .arg(100.0 * a->point_steps / (static_cast<double>(p.step) * yarn_job.yarn().points.size()), 0, 'f', 1);
-      m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4%5").arg(ended).arg(p.step).arg(yarn_job.backend()).arg(audit).arg(active));
+      // Leaf's relative stop rule set by a few spots of the emission (kinks): the run may have stopped early.
+      const QString peak = p.first_residual_peak > 0.5 && p.stopped_by == "converged"
+                               ? tr("; %1 % of the first residual came from 0.1 % of the points, so it may have stopped early "
+                                    "(relax the stitch mesh first, or lower the stop tolerance)")
+                                     .arg(100 * p.first_residual_peak, 0, 'f', 0)
+                               : QString();
+      m_job_label->setText(
+          tr("yarn %1 after %2 steps on %3, %4%5%6").arg(ended).arg(p.step).arg(yarn_job.backend()).arg(audit).arg(active).arg(peak));
     }
   } else {
     auto& mesh_job = static_cast<MeshRelaxJob&>(*job);

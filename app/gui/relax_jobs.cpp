@@ -191,6 +191,7 @@ void YarnRelaxJob::run() {
     m_progress.stopped_by = QString::fromStdString(report.stopped_by);
     m_progress.pull_through = report.pull_through_events;
     if (m_options.active_set.enabled) m_active = report.active;
+    if (report.first_residual_peak >= 0) m_progress.first_residual_peak = report.first_residual_peak;
   } catch (const std::exception& e) {
     fail(QString::fromStdString(e.what()));
   }

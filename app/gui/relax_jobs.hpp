@@ -34,6 +34,7 @@ public:
     bool converged = false;
     QString stopped_by;  ///< empty while running
     long pull_through = -1;
+    double first_residual_peak = -1;  ///< yarn: relax::YarnRelaxReport's, from the run that set the stop rule's scale
   };
   Progress progress() const;
 

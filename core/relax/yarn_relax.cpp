@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -31,6 +33,18 @@ double ordered_sum(long n, F term) {
   double total = 0;
   for (double p : part) total += p;
   return total;
+}
+
+/// The share of |∇E|² that the largest 0.1 % of the points' forces carry (at least one point): near 0.001 when
+/// the force is spread over the yarn, near 1 when a few spots dominate it.
+double peak_share(const Eigen::Matrix3Xd& grad) {
+  std::vector<double> squared(grad.cols());
+  for (long p = 0; p < grad.cols(); ++p) squared[p] = grad.col(p).squaredNorm();
+  const double total = std::accumulate(squared.begin(), squared.end(), 0.0);
+  if (!(total > 0)) return 0;
+  const long top = std::max<long>(1, grad.cols() / 1000);
+  std::nth_element(squared.begin(), squared.begin() + top - 1, squared.end(), std::greater<>());
+  return std::accumulate(squared.begin(), squared.begin() + top, 0.0) / total;
 }
 
 void check_param(double v, const char* name, bool allow_zero = true) {
@@ -274,7 +288,19 @@ public:
       failures = 0;
       good_points = state.points;
       good_velocities = state.velocities;
-      if (state.residual0 == 0) state.residual0 = residual;  // a state may bring its own scale (local relaxation)
+      if (state.residual0 == 0) {  // a state may bring its own scale (local relaxation)
+        state.residual0 = residual;
+        report.first_residual_peak = peak_share(grad);
+        if (report.first_residual_peak > 0.5) {
+          Eigen::Index largest;
+          grad.colwise().squaredNorm().maxCoeff(&largest);
+          const Eigen::Vector3d at = state.points.col(largest);
+          spdlog::warn("the first residual is {:.0f} % from the largest 0.1 % of the control points' forces (the largest at point {}, "
+                       "({:.1f}, {:.1f}, {:.1f}) mm): Leaf's relative stop rule may end this run early; relax the stitch mesh first or "
+                       "lower the tolerance",
+                       100 * report.first_residual_peak, largest, at.x(), at.y(), at.z());
+        }
+      }
       const double relative = residual / state.residual0;
       bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
       if (converged && m_active) {

@@ -143,6 +143,11 @@ struct YarnRelaxReport {
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run
+  /// The share of |∇E₀|² from the largest 0.1 % of the points' forces; above 0.5 a few spots (kinks in the
+  /// emitted yarn, yarn nearly touching yarn) set the scale of Leaf's relative stop rule, and the log warns
+  /// that the run may stop early.
+  /// -1 when the state brought its own scale (a resumed or local run), and on the GPU (not measured there).
+  double first_residual_peak = -1;
   long rollbacks = 0, contact_rebuilds = 0;
   ActiveSetCounters active;     ///< with the active set: what it did
   std::string backend = "cpu";  ///< "cpu", or "cuda: " and the device's name

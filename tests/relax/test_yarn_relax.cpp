@@ -162,6 +162,24 @@ TEST(YarnRelax, WithoutTheGuardAndWithOversizedStepsTheAuditorSeesThePassThrough
   EXPECT_NEAR(linking_number(curve_points(out, 0), curve_points(out, 1)), 0.0, 1e-6);
 }
 
+TEST(YarnRelax, AFirstResidualFromAFewSpotsIsReported) {
+  YarnRelaxOptions options;
+  options.max_steps = 0;  // the first evaluation only
+  // A swatch's emitted yarn spreads its first force over the whole yarn ...
+  const auto swatch = skein::testing::knitted(models::swatch(), "rib");
+  const auto spread = relaxed(swatch.system, options, swatch.targets);
+  EXPECT_GE(spread.report.first_residual_peak, 0.0);
+  EXPECT_LT(spread.report.first_residual_peak, 0.1);
+  // ... the mitten's, tessellated and not relaxed on its surface, has a few spots where it doubles back on itself,
+  // whose bending forces make most of it: Leaf's relative stop rule is then set by them.
+  const auto mitten = skein::testing::knitted(models::mitten(), "");
+  const auto peaked = relaxed(mitten.system, options, mitten.targets);
+  EXPECT_GT(peaked.report.first_residual_peak, 0.5);
+  // A state that brings its own scale has no first residual of its own.
+  auto state = peaked.state;
+  EXPECT_EQ(make_cpu_yarn_relaxer(mitten.system, mitten.targets, options)->run(state).first_residual_peak, -1.0);
+}
+
 TEST(YarnRelax, KnitPurlSwatchConvergesWithoutPullThrough) {
   const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "rib");
   EXPECT_FALSE(targets.boundary_loops.empty());
