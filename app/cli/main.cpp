@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "commands.hpp"
@@ -315,6 +316,8 @@ int main(int argc, char** argv) {
   auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
 
   CLI11_PARSE(app, argc, argv);
+  // The log goes to stderr, so that what a command prints as data (--stats -, a script's CSV) stays clean.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("skein"));
   spdlog::set_pattern("[%H:%M:%S.%e] %^%l%$ %v");
   spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::info);
   height_given = stitch->count("--stitch-height") > 0;
