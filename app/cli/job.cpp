@@ -4,6 +4,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include <unistd.h>
 
@@ -81,7 +82,8 @@ public:
   /// A file named relative to the job file's folder, which must exist.
   fs::path file(const std::string& key) const {
     const fs::path p = (m_file.parent_path() / text(key, "")).lexically_normal();
-    if (!fs::exists(p)) fail(name(key), "names " + p.string() + ", which does not exist");
+    std::error_code error;  // a name the file system refuses (too long, ...) is an error in the job, not a crash
+    if (!fs::exists(p, error)) fail(name(key), "names " + p.string() + ", which " + (error ? "cannot be read: " + error.message() : "does not exist"));
     return p;
   }
   std::string name(const std::string& key) const { return m_prefix.empty() ? key : m_prefix + "." + key; }
@@ -378,7 +380,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       const auto system = relax::make_yarn_system(yarn, job.take_up, {}, options.sampling);
       const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);
       auto state = relax::initial_state(system, options);
-      if (resume && fs::exists(checkpoint)) {
+      if (std::error_code ec; resume && fs::exists(checkpoint, ec)) {
         state = relax::read_checkpoint(checkpoint, relax::checkpoint_fingerprint(system, options.method), system.num_points());
         spdlog::info("resuming the yarn from {} at step {}", checkpoint.string(), state.step);
       } else if (resume) {

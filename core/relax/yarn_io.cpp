@@ -69,7 +69,8 @@ void write_bcc(const YarnCurves& yarn, const std::filesystem::path& path, bool p
 YarnCurves read_bcc(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(name, "", std::filesystem::exists(path) ? "cannot be opened for reading" : "no such file");
+  std::error_code ec;  // a name the file system refuses (too long, ...) is reported, not thrown
+  if (!in) throw Error(name, "", std::filesystem::exists(path, ec) ? "cannot be opened for reading" : ec ? "cannot be read: " + ec.message() : "no such file");
   in.seekg(0, std::ios::end);
   const std::uint64_t size = static_cast<std::uint64_t>(in.tellg());
   in.seekg(0);

@@ -277,7 +277,8 @@ void write_project(const Project& project, const std::filesystem::path& path) {
 
 Project read_project(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string(), "", std::filesystem::exists(path) ? "cannot be opened for reading" : "no such file");
+  std::error_code ec;  // a name the file system refuses (too long, ...) is reported, not thrown
+  if (!in) throw Error(path.string(), "", std::filesystem::exists(path, ec) ? "cannot be opened for reading" : ec ? "cannot be read: " + ec.message() : "no such file");
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();

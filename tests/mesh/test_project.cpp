@@ -98,6 +98,7 @@ TEST(Project, BadFilesNameTheLineAndRule) {
 TEST(Project, BinaryAndMissingFilesAreRejected) {
   ScratchDir dir;
   EXPECT_NE(error_of([&] { mesh::read_project(dir / "nope.skein"); }).find("no such file"), std::string::npos);
+  EXPECT_NE(error_of([&] { mesh::read_project(dir / (std::string(300, 'x') + ".skein")); }).find("File name too long"), std::string::npos);
   const auto bin = dir.write("bin.skein", std::string("skein 1\n\0\x01\x02", 11));
   EXPECT_NE(error_of([&] { mesh::read_project(bin); }).find("binary"), std::string::npos);
 }

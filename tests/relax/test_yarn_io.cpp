@@ -86,6 +86,7 @@ TEST(YarnIo, MalformedBccFilesAreRejected) {
   std::memcpy(s.data() + 68, &nan, 4);
   bad("nan.bcc", s, "not a finite number");
   EXPECT_NE(error_of([&] { relax::read_bcc(dir / "none.bcc"); }).find("no such file"), std::string::npos);
+  EXPECT_NE(error_of([&] { relax::read_bcc(dir / (std::string(300, 'x') + ".bcc")); }).find("File name too long"), std::string::npos);
 }
 
 TEST(YarnIo, ObjPolylinesAndTubes) {
