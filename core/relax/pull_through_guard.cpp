@@ -70,7 +70,7 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
   const int n = static_cast<int>(m_pairs.size());
   std::vector<double> new_budget(n, -1.0);
   std::vector<char> hit(n, 0), retest(n, 1);
-  double least = 1;  ///< the smallest factor the halvings left on a point's move
+  double least = 1;  // the smallest factor the halvings left on a point's move
   for (int round = 0; m_options.enabled; ++round) {
     const Eigen::VectorXd move = delta.colwise().norm().transpose();
     long tested = 0, skipped = 0, tests = 0, hits = 0;
