@@ -3,7 +3,8 @@
 # convergence, and its stand-in preview (`skein relax-yarn --stand-in`); the two compared (bench/yarn_distance.py:
 # RMS and largest control-point distance) and with the emission. One CSV line per run; with FULL=0 the full
 # relaxation is skipped (the sweater's takes half an hour on 2 cores) and only the preview is measured. With FILL
-# (a `skein edit --fill` pattern: rib2x2, seed, ...) the whole garment is knitted in it first.
+# (a `skein edit --fill` pattern: rib2x2, seed, ...) the whole garment is knitted in it first; with a pattern file
+# instead (patterns/cable-4.knit, ...) it is tiled over the garment (`skein pattern --onto`) and named to the stand-in.
 # Usage: bench/standin_runs.sh [RUNS=3] [MODEL=mitten] [FULL=1] [FILL]   (after scripts/build.sh)
 source "$(dirname "$0")/common.sh"
 runs=${1:-3}
@@ -11,14 +12,21 @@ model=${2:-mitten}
 full=${3:-1}
 fill=${4:-}
 mesh_relaxed "$model" "$tmp/relaxed.skein"
-[ -z "$fill" ] || "$skein" -q edit "$tmp/relaxed.skein" --fill "$fill" -o "$tmp/relaxed.skein"
+standin_args=()
+if [ -f "$fill" ]; then
+  "$skein" -q pattern "$fill" --onto "$tmp/relaxed.skein" -o "$tmp/relaxed.skein"
+  standin_args=(--stand-in-pattern "$fill")
+  fill=$(basename "$fill")
+elif [ -n "$fill" ]; then
+  "$skein" -q edit "$tmp/relaxed.skein" --fill "$fill" -o "$tmp/relaxed.skein"
+fi
 "$skein" -q yarn "$tmp/relaxed.skein" -o "$tmp/emitted.bcc"
 OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/probe.bcc" --report "$tmp/emitted.json" --max-steps 0 --no-audit
 distance() { bench/yarn_distance.py "$1" "$2"; }  # A B: "rms_r,largest_r"
 echo "model,fill,control_points,full_seconds,full_steps,standin_seconds,speedup,placed_points,following_points,taken_back_points,patch_steps,\
 rms_standin_full_r,largest_standin_full_r,rms_emitted_full_r,largest_emitted_full_r,energy_emitted,energy_standin,energy_full,pull_through_events"
 for i in $(seq "$runs"); do
-  OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" --stand-in -o "$tmp/standin.bcc" --report "$tmp/standin.json"
+  OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" --stand-in "${standin_args[@]}" -o "$tmp/standin.bcc" --report "$tmp/standin.json"
   s=$tmp/standin.json
   if [ "$full" = 1 ]; then
     OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/full.bcc" --report "$tmp/full.json" --no-audit

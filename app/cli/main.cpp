@@ -218,6 +218,10 @@ int main(int argc, char** argv) {
   ry->add_option("--stand-in-reach", ry_stand_in_options.reach,
                  "with --stand-in: rings of stitches beyond a region that join it where their type is the pattern's there")
       ->capture_default_str();
+  std::vector<std::string> ry_stand_in_patterns;
+  ry->add_option("--stand-in-pattern", ry_stand_in_patterns,
+                 "with --stand-in: a pattern tiled onto the garment that re-meshes (cables, lace, increases, decreases; patterns/FORMAT.md): "
+                 "its whole repeats get a stand-in too (repeat the option for several)");
 
   // skein pattern
   auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");
@@ -594,6 +598,7 @@ int main(int argc, char** argv) {
         relax::StandInReport stand_in;
         ry_stand_in_options.take_up = ry_take_up;
         ry_stand_in_options.take_up_by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
+        for (const auto& file : ry_stand_in_patterns) ry_stand_in_options.patterns.push_back(mesh::read_pattern(file));
         const Eigen::Matrix3Xd points =
             relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
         // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.

@@ -467,6 +467,8 @@ bool MainWindow::tile_pattern_file(const QString& path) {
     if (faces.empty()) throw Error("select the stitches to tile the pattern over first (the Select tool)");
     const auto tiled = m_doc.tile_pattern(faces, pattern, mesh::lowest_left(*m_doc.state().stitch, faces));
     if (tiled.repeats > 0) {
+      if (std::none_of(m_tiled_patterns.begin(), m_tiled_patterns.end(), [&](const mesh::Pattern& p) { return p.rows == pattern.rows && p.cables == pattern.cables; }))
+        m_tiled_patterns.push_back(pattern);
       set_selection({});  // the stitches were re-meshed: their ids are new
       statusBar()->showMessage(tr("Tiled %1: %2 whole repeats re-meshed (%3 of the %4 selected stitches)")
                                    .arg(QString::fromStdString(pattern.name)).arg(tiled.repeats).arg(tiled.stitches).arg(faces.size()));
@@ -656,6 +658,7 @@ bool MainWindow::preview_yarn() {
     options.audit = false;  // the preview is certified on its own straight path from the emission
     relax::StandInOptions stand_in;
     stand_in.take_up = m_yarn_settings.take_up;
+    stand_in.patterns = m_tiled_patterns;
     relax::StandInReport report;
     const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, stand_in, report);
     // Not a relaxation: Relax yarn starts from the emission.

@@ -11,6 +11,7 @@
 #include "document.hpp"
 #include "relax_jobs.hpp"
 #include "scene_geometry.hpp"
+#include "stitchmesh/pattern.hpp"
 
 class QAction;
 class QActionGroup;
@@ -129,6 +130,7 @@ private:
   bool m_job_is_yarn = false, m_paused = false;
   relax::Backend m_backend = relax::Backend::Auto;
   YarnSettings m_yarn_settings;
+  std::vector<mesh::Pattern> m_tiled_patterns;  ///< the patterns tiled by re-meshing, whose repeats the stand-in looks for
   QElapsedTimer m_live_clock;  ///< since the last live redraw
   qint64 m_live_wait = 0;      ///< [ms] before the next one
   QElapsedTimer m_status_clock;  ///< since the job's progress was last shown

@@ -21,13 +21,17 @@ namespace {
 
 using Eigen::Vector3d;
 
-/// A quad face's bilinear surface: corners at (u, v) = (0, 0), (1, 0), (1, 1), (0, 1), the stitch face's
-/// order (bottom-left, bottom-right, top-right, top-left; stitch_mesh.hpp).
+/// A stitch face's bilinear surface through its corners at (u, v) = (0, 0), (1, 0), (1, 1), (0, 1): bottom-left,
+/// bottom-right, top-right, top-left (stitch_mesh.hpp; the vertices between them along a course are left out).
 struct Bilinear {
   Vector3d c[4];
   Bilinear(const mesh::StitchMesh& mesh, int f) {
-    for (int k = 0; k < 4; ++k) c[k] = mesh.vertices[mesh.faces[f].vertex(k)];
+    const auto& face = mesh.faces[f];
+    int k = 0;
+    for (int corner : {0, face.bottom, face.bottom + 1, face.size() - 1}) c[k++] = mesh.vertices[face.vertex(corner)];
   }
+  double width() const { return 0.5 * ((c[1] - c[0]).norm() + (c[2] - c[3]).norm()); }
+  double height() const { return 0.5 * ((c[3] - c[0]).norm() + (c[2] - c[1]).norm()); }
   Vector3d at(double u, double v) const { return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3]; }
   Vector3d du(double v) const { return (1 - v) * (c[1] - c[0]) + v * (c[2] - c[3]); }
   Vector3d dv(double u) const { return (1 - u) * (c[3] - c[0]) + u * (c[2] - c[1]); }
@@ -45,11 +49,20 @@ struct Bilinear {
     }
     return {u, v, (p - at(u, v)).dot(normal(u, v))};
   }
-  /// A move `d` at (u, v) in this frame: d = a ∂u + b ∂v + c n.
+  /// A move `d` at (u, v) in this frame: the (a, b, c) that `carry` takes back to d (Newton's method from
+  /// d = a ∂u + b ∂v + c n, which is exact where the face is a parallelogram).
   Vector3d split(const Vector3d& d, double u, double v) const {
     Eigen::Matrix3d m;
     m << du(v), dv(u), normal(u, v);
-    return m.lu().solve(d);
+    Vector3d abc = m.lu().solve(d);
+    const Vector3d uvh(u, v, 0);
+    for (int i = 0; i < 10; ++i) {
+      const Vector3d residual = carry(uvh, abc) - d;
+      if (residual.norm() < 1e-12 * (1 + d.norm())) break;
+      m << du(v + abc.y()), dv(u + abc.x()), normal(u, v);
+      abc -= m.lu().solve(residual);
+    }
+    return abc;
   }
   /// The move (a, b, c) in this frame at (u, v, h) as a displacement [mm].
   Vector3d carry(const Vector3d& uvh, const Vector3d& move) const {
@@ -58,18 +71,72 @@ struct Bilinear {
   }
 };
 
-/// A repeat's periodic patch relaxed: per place in the repeat (row * width + column), the patch's points
-/// around one stitch at that place (its own and its neighbours', as far as one stitch beyond its face) at
-/// (u, v, h) in that stitch's frame, and their moves in relaxation (a, b, c) in the same frame, the patch's
-/// drift (the mean move of its real points) removed.
+/// A region of the garment knitted in one repeat: its faces and each one's place in the repeat (numbered as
+/// mesh::repeat_face numbers them).
+struct Region {
+  const mesh::Pattern* repeat;
+  std::string name;
+  std::vector<int> faces, place;
+};
+
+/// The regions: repeats of plain stitches read back from the stitch types (mesh::find_repeats), and repeats of
+/// the patterns that re-mesh, where `stand_in.patterns` names them (mesh::find_tiled_repeats), which take
+/// their faces from the former.
+std::vector<Region> regions_of(const mesh::StitchMesh& stitch, const StandInOptions& stand_in, const mesh::RepeatRegions& plain,
+                               const mesh::TiledRepeats& tiled) {
+  std::vector<Region> out;
+  for (size_t k = 0; k < plain.repeats.size(); ++k) out.push_back({&plain.repeats[k], mesh::repeat_text(plain.repeats[k]), {}, {}});
+  for (size_t k = 0; k < tiled.patterns.size(); ++k) out.push_back({&tiled.patterns[k], tiled.patterns[k].name, {}, {}});
+  for (int f = 0; f < static_cast<int>(stitch.faces.size()); ++f) {
+    if (tiled.pattern[f] >= 0) {
+      auto& region = out[plain.repeats.size() + tiled.pattern[f]];
+      region.faces.push_back(f), region.place.push_back(tiled.place[f]);
+    } else if (plain.repeat[f] >= 0) {
+      auto& region = out[plain.repeat[f]];
+      region.faces.push_back(f), region.place.push_back(plain.row[f] * region.repeat->width() + plain.column[f]);
+    }
+  }
+  std::erase_if(out, [&](const Region& r) { return static_cast<int>(r.faces.size()) < stand_in.min_faces; });
+  return out;
+}
+
+/// The region's stitch size: the width from its faces' course spans against those of the pattern's own faces
+/// at the same places; the height from their wale edges, each less the lean the pattern's own edge has along
+/// the course at that width (a lace's wale edges lean: its stitches are not all alike), against the pattern's
+/// rows, one stitch high each. On stitches of plain rectangles: their mean width and height.
+mesh::StitchSize mean_stitch_size(const mesh::StitchMesh& stitch, const Region& region) {
+  const auto unit = mesh::pattern_stitch_mesh(*region.repeat, 1, 1, {1, 1});
+  double spans = 0, unit_spans = 0;
+  for (size_t i = 0; i < region.faces.size(); ++i) {
+    const Bilinear garment(stitch, region.faces[i]), own(unit, region.place[i]);
+    spans += (garment.c[1] - garment.c[0]).norm() + (garment.c[2] - garment.c[3]).norm();
+    unit_spans += (own.c[1] - own.c[0]).norm() + (own.c[2] - own.c[3]).norm();
+  }
+  const double width = spans / unit_spans;
+  double height = 0;
+  for (size_t i = 0; i < region.faces.size(); ++i) {
+    const Bilinear garment(stitch, region.faces[i]), own(unit, region.place[i]);
+    for (const auto& [a, b] : {std::pair{0, 3}, {1, 2}}) {
+      const double lean = width * (own.c[b] - own.c[a]).x();
+      height += 0.5 * std::sqrt(std::max(0.0, (garment.c[b] - garment.c[a]).squaredNorm() - lean * lean));
+    }
+  }
+  return {width, height / static_cast<double>(region.faces.size())};
+}
+
+/// A repeat's periodic patch relaxed: per place in the repeat, the patch's points around its stitch at that
+/// place in the middle repeat (its own and its neighbours', as far as one stitch beyond its face) at (u, v, h)
+/// in that stitch's frame, and their moves in relaxation (a, b, c) in the same frame, the patch's drift (the
+/// mean move of its real points) removed; and that stitch's width and height.
 struct RelaxedRepeat {
   std::vector<std::vector<Vector3d>> where, move;
+  std::vector<Eigen::Vector2d> size;
   long steps = 0;
   bool converged = false;
 };
-RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius,
-                           const YarnRelaxOptions& options, const StandInOptions& stand_in) {
-  const std::string what = "stand-in for " + mesh::repeat_text(repeat);
+RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name, const mesh::StitchLibrary& library, const mesh::StitchSize& size,
+                           double radius, const YarnRelaxOptions& options, const StandInOptions& stand_in) {
+  const std::string what = "stand-in for " + name;
   auto patch = periodic_patch(repeat, library, size, radius);
   // The garment's take-up, for the stitch types this patch has.
   std::map<std::string, double> take_up_by_type;
@@ -91,28 +158,18 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrar
     if (patch.ring[p] == 0) drift += state.points.col(p) - system.points.col(p), ++real;
   if (real == 0) throw Error("", what, "the periodic patch has no real point");
   drift /= real;
-  // Each place's stitch nearest the patch's middle, found as the garment's are.
-  const auto found = mesh::find_repeats(tiles, stand_in.max_period);
-  const auto it = std::find_if(found.repeats.begin(), found.repeats.end(), [&](const mesh::Pattern& p) { return p.rows == repeat.rows; });
-  if (it == found.repeats.end()) throw Error("", what, "the periodic patch's own stitch mesh does not show the repeat");
-  const int r = static_cast<int>(it - found.repeats.begin()), width = repeat.width();
-  Vector3d middle = Vector3d::Zero();
-  for (const auto& v : tiles.vertices) middle += v / static_cast<double>(tiles.vertices.size());
-  const auto centroid = [&](int f) { return Bilinear(tiles, f).at(0.5, 0.5); };
-  std::vector<int> stitch(width * repeat.height(), -1);
-  for (int f = 0; f < static_cast<int>(tiles.faces.size()); ++f) {
-    if (found.repeat[f] != r) continue;
-    int& best = stitch[found.row[f] * width + found.column[f]];
-    if (best < 0 || (centroid(f) - middle).norm() < (centroid(best) - middle).norm()) best = f;
-  }
+  // Each place's stitch in the middle repeat, the real one.
+  const int middle = patch.tiles / 2;
+  const int places = repeat.stitches();
   RelaxedRepeat out;
   const double nearby = 2 * (size.width + size.height);  // a cheap test before the frame's
-  for (int f : stitch) {
-    if (f < 0) throw Error("", what, "the periodic patch lacks a stitch of the repeat");
+  for (int place = 0; place < places; ++place) {
+    const int f = mesh::repeat_face(repeat, patch.tiles, middle, middle, place);
     const Bilinear frame(tiles, f);
+    const Vector3d centroid = frame.at(0.5, 0.5);
     std::vector<Vector3d> where, move;
     for (int p = 0; p < system.num_points(); ++p) {
-      if ((system.points.col(p) - centroid(f)).norm() > nearby) continue;
+      if ((system.points.col(p) - centroid).norm() > nearby) continue;
       const Vector3d uvh = frame.local(system.points.col(p));
       if (uvh.x() < -1 || uvh.x() > 2 || uvh.y() < -1 || uvh.y() > 2) continue;
       where.push_back(uvh);
@@ -120,6 +177,7 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const mesh::StitchLibrar
     }
     out.where.push_back(std::move(where));
     out.move.push_back(std::move(move));
+    out.size.emplace_back(frame.width(), frame.height());
   }
   out.steps = run.steps;
   out.converged = run.converged;
@@ -132,6 +190,8 @@ void StandInOptions::validate() const {
   if (min_faces < 1) throw Error("", "stand-in", "the fewest faces of a repeat must be at least 1, found " + std::to_string(min_faces));
   if (max_period < 1 || max_period > 16) throw Error("", "stand-in", "the longest repeat must be 1 to 16 stitches, found " + std::to_string(max_period));
   if (reach < 0) throw Error("", "stand-in", "the rings beyond a region must be 0 or more, found " + std::to_string(reach));
+  for (const auto& pattern : patterns)
+    if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "stand-in", "pattern " + pattern.name + " is woven: a stitch mesh holds no repeat of it");
 }
 
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
@@ -141,48 +201,50 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   stand_in.validate();
   const int n = static_cast<int>(yarn.points.size());
   if (static_cast<int>(yarn.point_face.size()) != n) throw Error("", "stand-in", "the yarn does not say which face each point was emitted for");
-  const auto regions = mesh::find_repeats(stitch, stand_in.max_period, stand_in.reach);
-  spdlog::info("stand-in: {} repeating patterns found in {:.2f} s", regions.repeats.size(),
+  const auto plain = mesh::find_repeats(stitch, stand_in.max_period, stand_in.reach);
+  const auto tiled = mesh::find_tiled_repeats(stitch, stand_in.patterns);
+  for (size_t k = 0; k < tiled.patterns.size(); ++k)
+    spdlog::info("stand-in: {} whole repeats of {} found", tiled.repeats[k], tiled.patterns[k].name);
+  const auto regions = regions_of(stitch, stand_in, plain, tiled);
+  spdlog::info("stand-in: {} repeating patterns found in {:.2f} s", plain.repeats.size() + tiled.patterns.size(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
-  std::vector<std::vector<int>> faces_of(regions.repeats.size());
-  for (int f = 0; f < static_cast<int>(stitch.faces.size()); ++f)
-    if (regions.repeat[f] >= 0) faces_of[regions.repeat[f]].push_back(f);
   Eigen::Matrix3Xd base(3, n);
   for (int p = 0; p < n; ++p) base.col(p) = yarn.points[p];
   Eigen::Matrix3Xd out = base;
   std::vector<char> placed(n, 0);
+  // Each point on its face; the yarn of the cable faces made at emission on the nearest stitch along it (the
+  // turns and bind-offs at borders follow theirs).
+  const auto owner = owner_faces(yarn);
   std::vector<std::vector<int>> points_of(stitch.faces.size());
-  for (int p = 0; p < n; ++p)
-    if (yarn.point_face[p] >= 0 && yarn.point_face[p] < static_cast<int>(stitch.faces.size())) points_of[yarn.point_face[p]].push_back(p);
+  for (int p = 0; p < n; ++p) {
+    const bool cable = yarn.point_face[p] < 0 && !yarn.point_type.empty() && yarn.type_names[yarn.point_type[p]].starts_with("cable");
+    const int f = cable ? owner[p] : yarn.point_face[p];
+    if (f >= 0 && f < static_cast<int>(stitch.faces.size())) points_of[f].push_back(p);
+  }
   report = {};
   const double r = yarn.radius;
-  for (size_t k = 0; k < regions.repeats.size(); ++k) {
-    const mesh::Pattern& repeat = regions.repeats[k];
-    const std::vector<int>& faces = faces_of[k];
-    if (static_cast<int>(faces.size()) < stand_in.min_faces) continue;
+  for (const Region& region : regions) {
+    const mesh::Pattern& repeat = *region.repeat;
+    const std::vector<int>& faces = region.faces;
     const auto t0 = std::chrono::steady_clock::now();
     // The patch at the region's mean stitch size: its yarn as long as the region's.
-    mesh::StitchSize mean{0, 0};
-    for (int f : faces) {
-      const Bilinear q(stitch, f);
-      mean.width += 0.5 * ((q.c[1] - q.c[0]).norm() + (q.c[2] - q.c[3]).norm()) / static_cast<double>(faces.size());
-      mean.height += 0.5 * ((q.c[3] - q.c[0]).norm() + (q.c[2] - q.c[1]).norm()) / static_cast<double>(faces.size());
-    }
-    const std::string text = mesh::repeat_text(repeat);
+    const mesh::StitchSize mean = mean_stitch_size(stitch, region);
+    const std::string& text = region.name;
     spdlog::info("stand-in {}: {} faces, mean stitch {:.3f} x {:.3f} mm", text, faces.size(), mean.width, mean.height);
-    const auto relaxed = relax_repeat(repeat, library, mean, r, options, stand_in);
+    const auto relaxed = relax_repeat(repeat, text, library, mean, r, options, stand_in);
     StandInRepeat entry{text, repeat.width(), repeat.height(), static_cast<int>(faces.size()), relaxed.steps, relaxed.converged,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
-    // Each point to the patch's point at its place around the same stitch of the repeat: lengths in the
-    // patch's stitch (u along the course times its width, v along the wale times its height, h as it is).
-    const auto distance = [&](const Vector3d& a, const Vector3d& b) {
-      return Vector3d((a.x() - b.x()) * mean.width, (a.y() - b.y()) * mean.height, a.z() - b.z()).norm();
-    };
 #pragma omp parallel for schedule(dynamic, 16)
     for (int i = 0; i < static_cast<int>(faces.size()); ++i) {
-      const int f = faces[i], place = regions.row[f] * repeat.width() + regions.column[f];
+      const int f = faces[i], place = region.place[i];
       const auto& where = relaxed.where[place];
       const Bilinear frame(stitch, f);
+      // Each point to the patch's point at its place around the same stitch of the repeat: lengths in the
+      // patch's stitch (u along the course times its width, v along the wale times its height, h as it is).
+      const Eigen::Vector2d& size = relaxed.size[place];
+      const auto distance = [&](const Vector3d& a, const Vector3d& b) {
+        return Vector3d((a.x() - b.x()) * size.x(), (a.y() - b.y()) * size.y(), a.z() - b.z()).norm();
+      };
       for (int p : points_of[f]) {
         const Vector3d uvh = frame.local(base.col(p));
         double best = r;  // no match farther than one yarn radius
@@ -204,7 +266,6 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   const Eigen::Matrix3Xd mapped = out;
   const auto system = make_yarn_system(yarn);
   const TopologyAuditor auditor(system);
-  const auto owner = owner_faces(yarn);
   for (int rings = 1;;) {
     out = base;
     for (int p = 0; p < n; ++p)
@@ -221,7 +282,7 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
     const auto drop = face_rings(stitch, seeds, rings);
     int dropped = 0;
     for (int p = 0; p < n; ++p)
-      if (placed[p] && drop[yarn.point_face[p]]) placed[p] = 0, ++dropped;
+      if (placed[p] && drop[owner[p]]) placed[p] = 0, ++dropped;
     report.taken_back += dropped;
     if (dropped == 0) ++rings;
   }

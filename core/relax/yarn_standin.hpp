@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "relax/yarn_relax.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/tessellation.hpp"
@@ -19,6 +20,9 @@ struct StandInOptions {
   int reach = 2;        ///< rings of stitches of the pattern's type that join a region beyond it (mesh::find_repeats)
   double take_up = 1.0; ///< the patches' rest lengths, as the garment's relaxation takes them (make_yarn_system)
   std::map<std::string, double> take_up_by_type;
+  /// Patterns tiled onto the garment by re-meshing (cables, lace, increases, decreases: mesh::remeshes) whose
+  /// whole repeats get stand-ins too (mesh::find_tiled_repeats); the others are read back from the stitch types.
+  std::vector<mesh::Pattern> patterns;
   void validate() const;
 };
 
@@ -42,14 +46,15 @@ struct StandInReport {
 
 /// A preview of a garment's relaxed yarn from periodic stand-ins (issue 10; Leaf 2018 §5): where the garment
 /// is knitted in one repeating pattern over a region (mesh::find_repeats: stockinette, a rib, seed stitch,
-/// any repeat of plain stitches up to `max_period` wide and high, `reach` rings beyond), that repeat's periodic patch, at the
-/// region's mean stitch width and height, is relaxed once (relax::periodic_patch, with `options` and the
+/// any repeat of plain stitches up to `max_period` wide and high, `reach` rings beyond; and the whole repeats of
+/// the re-meshing patterns named in `stand_in.patterns`: cables, lace, increases, decreases), that repeat's
+/// periodic patch, at the region's mean stitch width and height, is relaxed once (relax::periodic_patch, with `options` and the
 /// patch-tracking forces) and its relaxed yarn mapped over the region's faces, so the garment itself is not
 /// relaxed. On a face of a region each emitted point is found in the face's bilinear frame (u, v along course
 /// and wale, h along the normal), matched to the patch's point at the same place around the same stitch of
 /// the repeat, and moved as that point moved in relaxation, the move carried from the patch's frame to the
-/// face's. Every other point (stitches within one of another pattern, of no repeat, on cables, increases and
-/// decreases) follows the nearest placed point of its yarn (follow_placed). On the straight path from the
+/// face's. Every other point (stitches within one of another pattern, of no repeat, the cable faces made at
+/// emission) follows the nearest placed point of its yarn (follow_placed). On the straight path from the
 /// emission to the preview no yarn passes through another (the topology auditor): faces whose points would
 /// are taken back to following. `yarn`: the garment's emitted yarn (mesh::emit_yarn of `stitch` with
 /// `library`). Returns the positions [mm].

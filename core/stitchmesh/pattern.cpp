@@ -75,6 +75,11 @@ int Pattern::width() const {
   return rows.empty() ? 0 : loops_taken(rows[0]);
 }
 int Pattern::height() const { return static_cast<int>(format == PatternFormat::Woven ? over.size() : rows.size()); }
+int Pattern::stitches() const {
+  int n = 0;
+  for (const auto& row : rows) n += static_cast<int>(row.size());
+  return n;
+}
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
   Pattern p;
@@ -182,6 +187,25 @@ Pattern read_pattern(const std::filesystem::path& file) {
   std::ostringstream text;
   text << in.rdbuf();
   return parse_pattern(text.str(), file.string());
+}
+
+bool remeshes(const Pattern& pattern) {
+  if (!pattern.cables.empty()) return true;
+  for (const auto& row : pattern.rows)
+    for (const auto& name : row)
+      if (const auto* t = find_stitch_type(name); t->bottom != 1 || t->top != 1) return true;
+  return false;
+}
+
+int repeat_face(const Pattern& pattern, int across, int column, int level, int place) {
+  int index = level * across * pattern.stitches();
+  for (const auto& row : pattern.rows) {
+    const int n = static_cast<int>(row.size());
+    if (place < n) return index + column * n + place;
+    index += across * n;
+    place -= n;
+  }
+  throw Error("", "pattern " + pattern.name, "has " + std::to_string(pattern.stitches()) + " faces in a repeat, fewer than the place asked for");
 }
 
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size) {
@@ -362,13 +386,9 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
   if (origin < 0 || origin >= n) throw Error("", "face " + std::to_string(origin), "does not exist (the stitch mesh has " + std::to_string(n) + " faces)");
   for (int f : faces)
     if (f < 0 || f >= n) throw Error("", "face " + std::to_string(f), "does not exist");
-  bool reshapes = !pattern.cables.empty();
-  for (const auto& row : pattern.rows)
-    for (const auto& name : row)
-      if (const auto* t = find_stitch_type(name); t->bottom != 1 || t->top != 1) reshapes = true;
   TileReport counts;
   StitchMesh out = mesh;
-  if (!reshapes) {
+  if (!remeshes(pattern)) {
     // Plain stitches only: each chosen plain stitch takes the pattern's type at its row and column from the
     // origin, modulo the repeat, so the repeat may be cut anywhere.
     const StitchGrid grid = stitch_grid(mesh);

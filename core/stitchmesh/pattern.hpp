@@ -22,6 +22,7 @@ enum class PatternFormat {
 /// (order +1) or behind (-1), on their way into the row above.
 struct PatternCable {
   int row = 0, first_loop = 0, over = 1, under = 1, order = 1;
+  bool operator==(const PatternCable&) const = default;
 };
 
 struct Pattern {
@@ -37,6 +38,7 @@ struct Pattern {
 
   int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
   int height() const;  ///< rows or weft yarns in one repeat
+  int stitches() const; ///< knits: faces in one repeat (pattern_stitch_mesh)
 };
 
 /// Reads a pattern file; throws skein::Error naming the file, the line and column and the rule broken
@@ -50,6 +52,15 @@ Pattern parse_pattern(const std::string& text, const std::string& source);
 /// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Cables become cable marks on the course
 /// edges above their stitches (none in the top row: nothing is above it). Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
+
+/// Whether tiling the knit pattern re-meshes the stitches it covers (its rows have increases, decreases or
+/// lace, or it has cables) instead of repainting plain stitches (tile_pattern).
+bool remeshes(const Pattern& pattern);
+
+/// A repeat's faces are numbered as pattern_stitch_mesh(pattern, 1, 1) makes them: rows bottom-up, each row's
+/// stitches left to right. The face of pattern_stitch_mesh(pattern, across, up) that is face `place` of the
+/// repeat `column` along the course and `level` up the wale.
+int repeat_face(const Pattern& pattern, int across, int column, int level, int place);
 
 /// Tiles a knit pattern over `faces` of a stitch mesh (Yuksel 2012 §5.3); the stitch `origin` takes the
 /// pattern's first stitch of its first row.

@@ -4,6 +4,7 @@
 #include <array>
 #include <deque>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "common/error.hpp"
@@ -99,7 +100,94 @@ bool fits(const Grid& grid, const std::vector<std::vector<int>>& rows, int f, in
   return true;
 }
 
+/// Per face and local edge: the face across that edge and the edge's local index there; {-1, -1} at a border.
+std::vector<std::vector<std::pair<int, int>>> faces_across(const StitchMesh& mesh) {
+  const EdgeTable table = edge_table(mesh);
+  std::vector<std::vector<std::pair<int, int>>> out(mesh.faces.size());
+  for (int f = 0; f < static_cast<int>(mesh.faces.size()); ++f) {
+    const auto& face = mesh.faces[f];
+    out[f].assign(face.size(), {-1, -1});
+    for (int k = 0; k < face.size(); ++k) {
+      const auto& uses = table.at(edge_key(face.vertex(k), face.vertex(k + 1)));
+      if (uses.count != 2) continue;
+      const auto& other = uses.use[0].face == f && uses.use[0].local == k ? uses.use[1] : uses.use[0];
+      out[f][k] = {other.face, other.local};
+    }
+  }
+  return out;
+}
+
+/// Whether face f of `a` and face g of `b` are the same stitch: type, shape and the cable marks on each edge.
+bool same_stitch(const StitchMesh& a, int f, const StitchMesh& b, int g) {
+  const auto &x = a.faces[f], &y = b.faces[g];
+  if (x.type != y.type || x.bottom != y.bottom || x.size() != y.size()) return false;
+  for (int k = 0; k < x.size(); ++k) {
+    const auto i = a.cables.find(std::minmax(x.vertex(k), x.vertex(k + 1)));
+    const auto j = b.cables.find(std::minmax(y.vertex(k), y.vertex(k + 1)));
+    if ((i == a.cables.end()) != (j == b.cables.end()) || (i != a.cables.end() && i->second != j->second)) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+TiledRepeats find_tiled_repeats(const StitchMesh& mesh, const std::vector<Pattern>& patterns) {
+  const int n = static_cast<int>(mesh.faces.size());
+  TiledRepeats out;
+  out.pattern.assign(n, -1);
+  out.place.assign(n, -1);
+  const auto next = faces_across(mesh);
+  for (const Pattern& pattern : patterns) {
+    if (pattern.format == PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: a stitch mesh holds no repeat of it");
+    if (!remeshes(pattern)) continue;
+    const int index = static_cast<int>(out.patterns.size());
+    out.patterns.push_back(pattern);
+    out.repeats.push_back(0);
+    // The repeat in the middle of a 3 x 3 tiling: every edge of it joined as in a larger piece of the fabric.
+    const StitchMesh tiles = pattern_stitch_mesh(pattern, 3, 3);
+    const auto tiles_next = faces_across(tiles);
+    const int faces = pattern.stitches();
+    std::vector<int> place_of(tiles.faces.size(), -1), face_at(faces);
+    for (int q = 0; q < faces; ++q) place_of[face_at[q] = repeat_face(pattern, 3, 1, 1, q)] = q;
+    // A repeat is matched from the place that the fewest of the mesh's faces could take.
+    std::vector<std::vector<int>> could(faces);
+#pragma omp parallel for schedule(static)
+    for (int q = 0; q < faces; ++q)
+      for (int g = 0; g < n; ++g)
+        if (same_stitch(tiles, face_at[q], mesh, g)) could[q].push_back(g);
+    const int anchor = static_cast<int>(std::min_element(could.begin(), could.end(), [](const auto& a, const auto& b) { return a.size() < b.size(); }) - could.begin());
+    std::vector<int> image(faces);
+    for (int start : could[anchor]) {
+      if (out.pattern[start] >= 0) continue;
+      std::fill(image.begin(), image.end(), -1);
+      image[anchor] = start;
+      std::vector<int> queue{anchor};
+      std::set<int> taken{start};
+      bool matches = true;
+      while (matches && !queue.empty()) {
+        const int q = queue.back();
+        queue.pop_back();
+        const int t = face_at[q], g = image[q];
+        for (int k = 0; matches && k < tiles.faces[t].size(); ++k) {
+          const auto [t2, k2] = tiles_next[t][k];
+          if (t2 < 0 || place_of[t2] < 0) continue;  // an edge of the repeat
+          const auto [g2, l2] = next[g][k];
+          const int q2 = place_of[t2];
+          if (g2 < 0 || l2 != k2 || out.pattern[g2] >= 0 || !same_stitch(tiles, t2, mesh, g2)) matches = false;
+          else if (image[q2] < 0) {
+            matches = taken.insert(g2).second;
+            image[q2] = g2;
+            queue.push_back(q2);
+          } else matches = image[q2] == g2;
+        }
+      }
+      if (!matches || std::count(image.begin(), image.end(), -1)) continue;
+      for (int q = 0; q < faces; ++q) out.pattern[image[q]] = index, out.place[image[q]] = q;
+      ++out.repeats[index];
+    }
+  }
+  return out;
+}
 
 int RepeatRegions::faces_of(int r) const { return static_cast<int>(std::count(repeat.begin(), repeat.end(), r)); }
 

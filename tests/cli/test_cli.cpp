@@ -240,6 +240,24 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("the rings beyond a region must be 0 or more, found -1"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(refused));
+  // A lace tiled onto the swatch re-meshes its stitches: named, its whole repeats get their stand-in too.
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  const auto lace = dir / "lace.skein";
+  ASSERT_EQ(run_skein("pattern " + patterns + "/eyelet-lace.knit --onto " + project.string() + " -o " + lace.string()).status, 0);
+  r = run_skein("relax-yarn " + lace.string() + " --stand-in --stand-in-min-faces 4 --stand-in-pattern " + patterns + "/eyelet-lace.knit -o " +
+                preview.string() + " --report " + report.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("whole repeats of Eyelet lace found"), std::string::npos) << r.output;
+  for (const char* key : {"\"pattern\": \"Eyelet lace\"", "\"pull_through_events\": 0"}) EXPECT_NE(slurp(report).find(key), std::string::npos) << key;
+  // A pattern file that is not one, or a weave, is refused with its name.
+  const auto broken = dir / "broken.knit";
+  std::ofstream(broken) << "format knit\nk zz k\n";
+  for (const auto& [file, rule] : {std::pair{broken.string(), std::string("zz")}, {patterns + "/twill-2-1.weave", std::string("is woven")}}) {
+    r = run_skein("relax-yarn " + lace.string() + " --stand-in --stand-in-pattern " + file + " -o " + refused.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(rule), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(refused));
+  }
   // Stand-ins map over stitch faces: bare yarn has none.
   const auto bare = dir / "bare.bcc", none = dir / "none.bcc";
   ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + bare.string()).status, 0);

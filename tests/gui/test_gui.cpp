@@ -1,6 +1,8 @@
 // skein-gui workflows, driven the way a user drives them: actions, clicks and drags in the 3D view. Runs under
 // xvfb-run (QOpenGLWidget needs a real GL display; Qt's offscreen platform cannot host it). Each stage saves
 // a screenshot to $SKEIN_GUI_SHOTS (or a temporary folder) and checks that it is not blank.
+#include <numeric>
+
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
@@ -405,6 +407,14 @@ private slots:
     // One undo step back to the emitted yarn.
     action(w, "undo")->trigger();
     QVERIFY(w.document().state().yarn->points == emitted.points);
+    // A lace tiled over the swatch re-meshes it; the preview finds its repeats from the tiling.
+    std::vector<int> all(w.document().state().stitch->faces.size());
+    std::iota(all.begin(), all.end(), 0);
+    w.set_selection(all);
+    QVERIFY2(w.tile_pattern_file(kPatterns + "/eyelet-lace.knit"), qPrintable(w.last_error()));
+    QVERIFY(w.emit_yarn());
+    QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
+    QVERIFY2(w.job_text().contains("Eyelet lace"), qPrintable(w.job_text()));
   }
 
   void yarn_relaxation_pauses_resumes_and_stops() {

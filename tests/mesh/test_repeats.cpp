@@ -140,3 +140,84 @@ TEST(Repeats, ASquareOfFiveByFiveStitchesIsARegionOfItsNineInnerOnes) {
   for (int row = 6; row <= 8; ++row)
     for (int col = 6; col <= 8; ++col) EXPECT_EQ(found.repeat[row * 16 + col], 1) << row << ", " << col;
 }
+
+namespace {
+const char* kCable = "format knit\np p k k k k p p\np p k k k k p p\np p k k k k p p\np p cable2x2+ p p\n";
+const char* kLace = "format knit\nk k k k k\nkyk d123k k\nk k k k k\n";
+
+/// A stockinette sheet 40 stitches wide and 16 high, a cable tiled over its left 24 columns and a lace over
+/// its right 15 (a column of stockinette between them).
+struct TiledSheet {
+  Pattern cable = parse_pattern(kCable, "cable.knit"), lace = parse_pattern(kLace, "lace.knit");
+  StitchMesh mesh;
+  TileReport cables, laces;
+  TiledSheet() {
+    const StitchSize size;
+    mesh = sheet("k\n", 40, 16);
+    const auto columns = [&](double from, double to) {
+      std::vector<int> faces;
+      for (int f = 0; f < static_cast<int>(mesh.faces.size()); ++f) {
+        const double x = mesh.vertices[mesh.faces[f].vertex(0)].x() / size.width;
+        if (x >= from - 0.5 && x < to - 0.5) faces.push_back(f);
+      }
+      return faces;
+    };
+    auto faces = columns(0, 24);
+    mesh = tile_pattern(mesh, faces, cable, lowest_left(mesh, faces), &cables);
+    faces = columns(25, 40);
+    mesh = tile_pattern(mesh, faces, lace, lowest_left(mesh, faces), &laces);
+  }
+};
+}  // namespace
+
+TEST(TiledRepeats, EveryWholeRepeatOfACableAndALaceIsFoundFaceForFace) {
+  const TiledSheet s;
+  ASSERT_EQ(s.cables.repeats, 12);  // 3 across, 4 up
+  ASSERT_EQ(s.laces.repeats, 15);   // 3 across, 5 up
+  const auto found = find_tiled_repeats(s.mesh, {s.cable, s.lace});
+  ASSERT_EQ(found.patterns.size(), 2u);
+  EXPECT_EQ(found.repeats, (std::vector<int>{12, 15}));
+  const auto cable_unit = pattern_stitch_mesh(s.cable, 1, 1), lace_unit = pattern_stitch_mesh(s.lace, 1, 1);
+  std::vector<std::vector<int>> seen(2, std::vector<int>(std::max(s.cable.stitches(), s.lace.stitches()), 0));
+  for (int f = 0; f < static_cast<int>(s.mesh.faces.size()); ++f) {
+    const int k = found.pattern[f];
+    if (k < 0) {
+      EXPECT_TRUE(is_plain(s.mesh.faces[f]) && s.mesh.faces[f].type == "k") << "face " << f << " (" << s.mesh.faces[f].type << ") is in no repeat";
+      continue;
+    }
+    const auto& own = (k == 0 ? cable_unit : lace_unit).faces[found.place[f]];
+    EXPECT_EQ(s.mesh.faces[f].type, own.type) << "face " << f;
+    EXPECT_EQ(s.mesh.faces[f].size(), own.size()) << "face " << f;
+    ++seen[k][found.place[f]];
+  }
+  for (int q = 0; q < s.cable.stitches(); ++q) EXPECT_EQ(seen[0][q], 12) << "cable place " << q;
+  for (int q = 0; q < s.lace.stitches(); ++q) EXPECT_EQ(seen[1][q], 15) << "lace place " << q;
+}
+
+TEST(TiledRepeats, ARepeatWithAStitchChangedOrACableLostIsNotOne) {
+  TiledSheet s;
+  const auto before = find_tiled_repeats(s.mesh, {s.cable, s.lace});
+  // A purl of one cable repeat knitted, and the cable mark farthest from it taken off (another repeat's).
+  const auto purl = std::find_if(s.mesh.faces.begin(), s.mesh.faces.end(), [](const StitchFace& f) { return f.type == "p"; });
+  ASSERT_NE(purl, s.mesh.faces.end());
+  EXPECT_EQ(before.pattern[purl - s.mesh.faces.begin()], 0);
+  purl->type = "k";
+  const Eigen::Vector3d there = s.mesh.vertices[purl->vertex(0)];
+  ASSERT_FALSE(s.mesh.cables.empty());
+  const auto farthest = std::max_element(s.mesh.cables.begin(), s.mesh.cables.end(), [&](const auto& a, const auto& b) {
+    return (s.mesh.vertices[a.first.first] - there).norm() < (s.mesh.vertices[b.first.first] - there).norm();
+  });
+  s.mesh.cables.erase(farthest);
+  const auto after = find_tiled_repeats(s.mesh, {s.cable, s.lace});
+  EXPECT_EQ(after.repeats, (std::vector<int>{10, 15}));
+}
+
+TEST(TiledRepeats, PatternsThatDoNotReMeshAreLeftToTheStitchTypesAndWovensAreRefused) {
+  const TiledSheet s;
+  const auto found = find_tiled_repeats(s.mesh, {parse_pattern("format knit\nk k p p\n", "rib.knit"), s.lace});
+  ASSERT_EQ(found.patterns.size(), 1u);
+  EXPECT_EQ(found.patterns[0].name, s.lace.name);
+  EXPECT_EQ(found.repeats, std::vector<int>{15});
+  const auto error = skein::testing::error_of([&] { find_tiled_repeats(s.mesh, {parse_pattern("format woven\n10\n01\n", "twill.weave")}); });
+  EXPECT_NE(error.find("woven"), std::string::npos) << error;
+}
