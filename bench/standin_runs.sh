@@ -5,6 +5,8 @@
 # relaxation is skipped (the sweater's takes half an hour on 2 cores) and only the preview is measured. With FILL
 # (a `skein edit --fill` pattern: rib2x2, seed, ...) the whole garment is knitted in it first; with a pattern file
 # instead (patterns/cable-4.knit, ...) it is tiled over the garment (`skein pattern --onto`) and named to the stand-in.
+# FULL_ARGS (environment) goes to the full relaxation, e.g. FULL_ARGS="--max-steps 300" for a garment whose relaxation
+# jams short of Leaf's rule.
 # Usage: bench/standin_runs.sh [RUNS=3] [MODEL=mitten] [FULL=1] [FILL]   (after scripts/build.sh)
 source "$(dirname "$0")/common.sh"
 runs=${1:-3}
@@ -29,7 +31,7 @@ for i in $(seq "$runs"); do
   OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" --stand-in "${standin_args[@]}" -o "$tmp/standin.bcc" --report "$tmp/standin.json"
   s=$tmp/standin.json
   if [ "$full" = 1 ]; then
-    OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/full.bcc" --report "$tmp/full.json" --no-audit
+    OMP_NUM_THREADS=2 "$skein" -q relax-yarn "$tmp/relaxed.skein" -o "$tmp/full.bcc" --report "$tmp/full.json" --no-audit ${FULL_ARGS:-}
     f=$tmp/full.json
     cols="$(field "$f" "round(r['wall_seconds'], 2)"),$(field "$f" "r['steps']")"
     speedup=$(python3 -c "import json; print(round(json.load(open('$f'))['wall_seconds'] / json.load(open('$s'))['wall_seconds'], 1))")

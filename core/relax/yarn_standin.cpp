@@ -71,6 +71,11 @@ struct Bilinear {
   }
 };
 
+/// Whether point p is of the yarn that emission makes for a cable's crossing, between the stitch faces.
+bool on_cable(const mesh::YarnCurves& yarn, int p) {
+  return yarn.point_face[p] < 0 && yarn.point_type[p] >= 0 && yarn.type_names[yarn.point_type[p]].starts_with("cable");
+}
+
 /// A region of the garment knitted in one repeat: its faces and each one's place in the repeat (numbered as
 /// mesh::repeat_face numbers them).
 struct Region {
@@ -130,6 +135,7 @@ mesh::StitchSize mean_stitch_size(const mesh::StitchMesh& stitch, const Region& 
 /// mean move of its real points) removed; and that stitch's width and height.
 struct RelaxedRepeat {
   std::vector<std::vector<Vector3d>> where, move;
+  std::vector<std::vector<char>> cable;  ///< whether the point is of a cable's crossing yarn (on_cable)
   std::vector<Eigen::Vector2d> size;
   long steps = 0;
   bool converged = false;
@@ -168,14 +174,17 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name,
     const Bilinear frame(tiles, f);
     const Vector3d centroid = frame.at(0.5, 0.5);
     std::vector<Vector3d> where, move;
+    std::vector<char> cable;
     for (int p = 0; p < system.num_points(); ++p) {
       if ((system.points.col(p) - centroid).norm() > nearby) continue;
       const Vector3d uvh = frame.local(system.points.col(p));
       if (uvh.x() < -1 || uvh.x() > 2 || uvh.y() < -1 || uvh.y() > 2) continue;
       where.push_back(uvh);
+      cable.push_back(on_cable(patch.yarn, p));
       move.push_back(frame.split(state.points.col(p) - system.points.col(p) - drift, uvh.x(), uvh.y()));
     }
     out.where.push_back(std::move(where));
+    out.cable.push_back(std::move(cable));
     out.move.push_back(std::move(move));
     out.size.emplace_back(frame.width(), frame.height());
   }
@@ -200,7 +209,8 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   const auto started = std::chrono::steady_clock::now();
   stand_in.validate();
   const int n = static_cast<int>(yarn.points.size());
-  if (static_cast<int>(yarn.point_face.size()) != n) throw Error("", "stand-in", "the yarn does not say which face each point was emitted for");
+  if (static_cast<int>(yarn.point_face.size()) != n || static_cast<int>(yarn.point_type.size()) != n)
+    throw Error("", "stand-in", "the yarn does not say which face and stitch type each point was emitted for");
   const auto plain = mesh::find_repeats(stitch, stand_in.max_period, stand_in.reach);
   const auto tiled = mesh::find_tiled_repeats(stitch, stand_in.patterns);
   for (size_t k = 0; k < tiled.patterns.size(); ++k)
@@ -217,8 +227,7 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
   const auto owner = owner_faces(yarn);
   std::vector<std::vector<int>> points_of(stitch.faces.size());
   for (int p = 0; p < n; ++p) {
-    const bool cable = yarn.point_face[p] < 0 && !yarn.point_type.empty() && yarn.type_names[yarn.point_type[p]].starts_with("cable");
-    const int f = cable ? owner[p] : yarn.point_face[p];
+    const int f = on_cable(yarn, p) ? owner[p] : yarn.point_face[p];
     if (f >= 0 && f < static_cast<int>(stitch.faces.size())) points_of[f].push_back(p);
   }
   report = {};
@@ -249,8 +258,10 @@ Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::Ya
         const Vector3d uvh = frame.local(base.col(p));
         double best = r;  // no match farther than one yarn radius
         int match = -1;
+        // A cable's crossing yarn to the patch's, a stitch's to a stitch's.
+        const char cable = on_cable(yarn, p);
         for (size_t q = 0; q < where.size(); ++q)
-          if (const double d = distance(uvh, where[q]); d < best) best = d, match = static_cast<int>(q);
+          if (const double d = distance(uvh, where[q]); d < best && relaxed.cable[place][q] == cable) best = d, match = static_cast<int>(q);
         if (match < 0) continue;
         out.col(p) = base.col(p) + frame.carry(uvh, relaxed.move[place][match]);
         placed[p] = 1;

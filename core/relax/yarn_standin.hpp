@@ -50,11 +50,12 @@ struct StandInReport {
 /// the re-meshing patterns named in `stand_in.patterns`: cables, lace, increases, decreases), that repeat's
 /// periodic patch, at the region's mean stitch width and height, is relaxed once (relax::periodic_patch, with `options` and the
 /// patch-tracking forces) and its relaxed yarn mapped over the region's faces, so the garment itself is not
-/// relaxed. On a face of a region each emitted point is found in the face's bilinear frame (u, v along course
-/// and wale, h along the normal), matched to the patch's point at the same place around the same stitch of
-/// the repeat, and moved as that point moved in relaxation, the move carried from the patch's frame to the
-/// face's. Every other point (stitches within one of another pattern, of no repeat, the cable faces made at
-/// emission) follows the nearest placed point of its yarn (follow_placed). On the straight path from the
+/// relaxed. On a face of a region each emitted point (a cable's yarn, made at emission between faces: on the
+/// nearest face along its yarn) is found in the face's bilinear frame (u, v along course and wale, h along
+/// the normal), matched to the patch's point emitted for the same stitch type at the same place around the
+/// same stitch of the repeat, and moved as that point moved in relaxation, the move carried from the patch's
+/// frame to the face's. Every other point (stitches within one of another pattern, of no repeat, border
+/// pieces) follows the nearest placed point of its yarn (follow_placed). On the straight path from the
 /// emission to the preview no yarn passes through another (the topology auditor): faces whose points would
 /// are taken back to following. `yarn`: the garment's emitted yarn (mesh::emit_yarn of `stitch` with
 /// `library`). Returns the positions [mm].
