@@ -28,6 +28,12 @@ build/bin/skein-sampler "$tmp" >/dev/null
 "$skein" -q edit "$tmp/rib8.skein" --fill rib2x2 -o "$tmp/rib8.skein"
 "$skein" -q relax-yarn "$tmp/rib8.skein" --stand-in -o "$tmp/rib8-preview.bcc" --png "$out/swatch-rib-stand-in.png" --views flat
 "$skein" -q relax-yarn "$tmp/rib8.skein" -o "$tmp/rib8.bcc" --no-audit --png "$out/swatch-rib-stand-in-relaxed.png" --views flat
+# The same for a four-stitch cable tiled over the swatch (8 whole repeats): the stand-in named the pattern.
+"$skein" -q stitch models/swatch.obj --auto-label --stitch-size 8 --stitch-height 6.7 -o "$tmp/cable8.skein"
+"$skein" -q pattern patterns/cable-4.knit --onto "$tmp/cable8.skein" -o "$tmp/cable8.skein"
+"$skein" -q relax-yarn "$tmp/cable8.skein" --stand-in --stand-in-pattern patterns/cable-4.knit -o "$tmp/cable8-preview.bcc" \
+  --png "$out/swatch-cable-stand-in.png" --views flat
+"$skein" -q relax-yarn "$tmp/cable8.skein" -o "$tmp/cable8.bcc" --no-audit --png "$out/swatch-cable-stand-in-relaxed.png" --views flat
 "$skein" -q stitch models/mitten.obj --labels models/mitten.skein -o "$tmp/mitten.skein"
 "$skein" -q relax-yarn "$tmp/mitten.skein" -o "$tmp/mitten.bcc" --no-audit --max-seconds 300 --png "$out/mitten-yarn-relaxed.png" --views flat
 echo "wrote $(ls $out | tr '\n' ' ')"
