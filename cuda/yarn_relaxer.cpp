@@ -38,6 +38,7 @@ public:
     Eigen::Matrix3Xd before, after;
     DeviceStatus status;
     long step = state.step, failures = 0;
+    relax::JamWatch jam(m_options.jam_steps, m_options.jam_drop);
     for (;;) {
       // Where this batch must stop: the step cap, the next checkpoint step, the time cap (at once); with the
       // audit, after every step (the auditor compares consecutive states on the CPU).
@@ -53,8 +54,11 @@ public:
         logs.back().crossings = static_cast<long>(m_auditor.crossings(before, after).size());
         state.pull_through_events += logs.back().crossings;
       }
-      for (const auto& log : logs)
+      bool jammed = false;
+      for (const auto& log : logs) {
         if (on_step) on_step(log);
+        jammed = jammed || jam.jammed(log.energy, log.held_points);
+      }
       step = status.step;
       if (!logs.empty()) failures = 0;
       if (status.halt == Halt::NotFinite) {
@@ -84,6 +88,11 @@ public:
       }
       if (status.halt == Halt::StopAt && step >= m_options.max_steps) {
         report.stopped_by = "step cap";
+        break;
+      }
+      if (jammed) {
+        report.stopped_by = "jammed";
+        spdlog::warn("step {}: {}", step, jam.describe());
         break;
       }
       if (status.halt == Halt::Rebuild) contacts = rebuild(state);

@@ -117,8 +117,8 @@ relax::MeshRelaxOptions mesh_options(const Keys& k) {
 }
 
 relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
-  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "max_move", "audit", "active_set", "contact_spacing", "checkpoint_every",
-          "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
+          "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
   o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
   backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
@@ -126,6 +126,8 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
   o.max_seconds = k.number("max_seconds", 0, 0, 1e9);
   o.tolerance = k.number("tolerance", o.tolerance, 0, 1);
   o.stall = k.number("stall", o.stall, 0, 1e3);
+  o.jam_steps = k.integer("jam_steps", o.jam_steps, 0, 1L << 40);
+  o.jam_drop = k.number("jam_drop", o.jam_drop, 0, 1);
   o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);
   o.audit = k.flag("audit", true);
   o.active_set.enabled = k.flag("active_set", false);

@@ -168,6 +168,12 @@ int main(int argc, char** argv) {
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
   ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  ry->add_option("--jam-steps", ry_options.jam_steps,
+                 "stop, not converged, when for this many steps in a row the guard held yarn against yarn on every step and the energy "
+                 "fell by less than --jam-drop of itself over them (0: never)")
+      ->capture_default_str();
+  ry->add_option("--jam-drop", ry_options.jam_drop, "with --jam-steps: the energy's relative fall over the window that still counts as relaxing")
+      ->capture_default_str();
   ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
   ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();

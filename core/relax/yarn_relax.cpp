@@ -66,6 +66,27 @@ void YarnParams::validate() const {
   if (!(contact_soft > 0 && contact_soft < 1)) throw Error("", "yarn model", "contact_soft must be in (0, 1), found " + std::to_string(contact_soft));
 }
 
+bool JamWatch::jammed(double energy, long held) {
+  if (m_steps <= 0) return false;
+  if (held == 0) {
+    m_streak = 0;
+    return false;
+  }
+  if (m_streak == 0) m_start = energy;
+  m_held = held;
+  if (++m_streak < m_steps) return false;
+  m_fell = (m_start - energy) / std::abs(m_start);
+  if (m_fell < m_drop) return true;
+  m_streak = 0;
+  return false;
+}
+
+std::string JamWatch::describe() const {
+  return fmt::format("jammed: the guard held yarn against yarn on each of the last {} steps ({} points on the last) and the energy fell by "
+                     "{:.4f} % over them; the run stops here, not converged (--jam-steps 0 goes on)",
+                     m_steps, m_held, 100 * m_fell);
+}
+
 void YarnRelaxOptions::validate() const {
   params.validate();
   guard.validate();
@@ -77,6 +98,8 @@ void YarnRelaxOptions::validate() const {
   check_param(stall, "stall");
   check_param(max_seconds, "max_seconds");
   check_param(checkpoint_minutes, "checkpoint_minutes");
+  check_param(jam_drop, "jam_drop");
+  if (jam_steps < 0) throw Error("", "yarn relaxation", "jam_steps must be 0 (never) or more, found " + std::to_string(jam_steps));
   if (active_set.enabled) active_set.validate();
   sampling.validate();
   if (guard.max_move > 0.5 * contact_margin)
@@ -255,6 +278,8 @@ public:
     auto last_checkpoint = started;
     const auto seconds_since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
     const double r = m_system.radius, limit = m_options.guard.max_move * r;
+    JamWatch jam(m_options.jam_steps, m_options.jam_drop);
+    bool jammed = false;
     const auto fingerprint = checkpoint_fingerprint(m_system, m_options.method);
     m_guard->set_counters(state.guard);
     refresh_contacts(state);
@@ -333,6 +358,11 @@ public:
         report.stopped_by = "interrupted";
         break;
       }
+      if (jammed) {
+        report.stopped_by = "jammed";
+        spdlog::warn("step {}: {}", state.step, jam.describe());
+        break;
+      }
 
       const GuardCounters before = m_guard->counters();
       const long awake = m_active ? m_active->choose(grad, m_options.tolerance * state.residual0 / std::sqrt(static_cast<double>(grad.cols())))
@@ -353,6 +383,7 @@ public:
       m_moved_since_rebuild += moved;
       if (m_moved_since_rebuild >= 0.5 * m_options.contact_margin * r) refresh_contacts(state);
       state.guard = m_guard->counters();
+      jammed = jam.jammed(energy, state.guard.held_points - before.held_points);
 
       if (on_step) {
         YarnStepLog log;

@@ -100,6 +100,10 @@ struct YarnRelaxOptions {
   double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
   long max_steps = 20000;
   double max_seconds = 0;       ///< wall-time cap, 0 for none
+  /// A jam (JamWatch): the run stops, not converged, when for `jam_steps` steps in a row the guard held points
+  /// on every step and the energy fell by less than `jam_drop` of itself over them. 0 steps: never.
+  long jam_steps = 100;
+  double jam_drop = 1e-4;
   bool audit = true;            ///< run the topology auditor on every step (pull_through_events)
   ActiveSetOptions active_set;  ///< converged points stop being integrated (CPU only)
   ContactSampling sampling;     ///< contact samples per segment, for the systems the callers build (make_yarn_system)
@@ -137,7 +141,7 @@ struct YarnStepLog {
 /// Outcome of a run; not converging is a result, not an exception.
 struct YarnRelaxReport {
   bool converged = false;
-  std::string stopped_by;     ///< "converged", "step cap", "time cap", "interrupted", "diverged"
+  std::string stopped_by;     ///< "converged", "step cap", "time cap", "interrupted", "jammed", "diverged"
   long steps = 0;
   double wall_seconds = 0, residual = 0, energy = 0;
   long contacts = 0;          ///< contact pairs at the end
@@ -151,6 +155,26 @@ struct YarnRelaxReport {
   long rollbacks = 0, contact_rebuilds = 0;
   ActiveSetCounters active;     ///< with the active set: what it did
   std::string backend = "cpu";  ///< "cpu", or "cuda: " and the device's name
+};
+
+/// Tells a run that is jammed from one that still relaxes. Where emitted yarn lies pulled against yarn it may
+/// not pass (a jam), the guard holds the same points step after step, their forces keep Leaf's residual above
+/// its tolerance, and the energy creeps: such a run would go on to its step cap without converging. Fed every
+/// step's energy (before the step) and the points the guard held in it, it says jammed when for `steps` steps
+/// in a row some points were held and the energy fell by less than `drop` of itself over them; a window that
+/// fell more starts the next.
+class JamWatch {
+public:
+  JamWatch(long steps, double drop) : m_steps(steps), m_drop(drop) {}
+  bool jammed(double energy, long held);
+  /// What a jammed run says of itself, for the log.
+  std::string describe() const;
+
+private:
+  long m_steps;
+  double m_drop;
+  long m_streak = 0, m_held = 0;
+  double m_start = 0, m_fell = 0;
 };
 
 /// Relaxes yarn control points toward equilibrium (Yuksel 2012 §6.3, Leaf 2018 §3); never lets two yarns

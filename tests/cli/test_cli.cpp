@@ -291,6 +291,10 @@ TEST(Cli, RelaxYarnTakesAdaptiveContactSamplesAndRefusesASpacingThatLetsYarnSlip
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("so that crossing yarns always feel contact"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(none));
+  r = run_skein("relax-yarn " + project.string() + " --jam-steps -1 -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("jam_steps must be 0 (never) or more, found -1"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(none));
 }
 
 TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {

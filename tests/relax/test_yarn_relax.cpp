@@ -147,6 +147,43 @@ TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
   EXPECT_LT((out.points[0] - out.points[12]).norm(), 4.0);
 }
 
+TEST(JamWatch, AJamIsStepsOfHeldPointsOverWhichTheEnergyHardlyFalls) {
+  JamWatch watch(10, 1e-4);
+  double energy = 1000;
+  // Relaxing with points held: the energy falls 0.1 % a step, far more than 10⁻⁴ over ten steps.
+  for (int step = 0; step < 50; ++step, energy *= 0.999) EXPECT_FALSE(watch.jammed(energy, 5)) << step;
+  // Creeping with points held: ten steps in a row are a jam, not nine.
+  for (int step = 0; step < 9; ++step, energy *= 1 - 1e-6) EXPECT_FALSE(watch.jammed(energy, 5)) << step;
+  EXPECT_TRUE(watch.jammed(energy, 5));
+  EXPECT_NE(watch.describe().find("5 points on the last"), std::string::npos) << watch.describe();
+  // A step that holds nothing starts the count again; so does a window that fell enough.
+  JamWatch again(10, 1e-4);
+  for (int step = 0; step < 30; ++step) EXPECT_FALSE(again.jammed(energy, step % 7 == 6 ? 0 : 3)) << step;
+  // Off.
+  JamWatch off(0, 1e-4);
+  for (int step = 0; step < 30; ++step) EXPECT_FALSE(off.jammed(energy, 3));
+}
+
+TEST(YarnRelax, LinkedRingsSqueezedTightJamAndTheRunSaysSo) {
+  // Two linked rings given a tenth of their yarn: they pull against each other until the guard holds them, and
+  // the energy stops falling. The run ends jammed, not converged, well before its cap, with nothing passed
+  // through; with the rule off it runs on to the cap.
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn, 0.1);
+  auto options = squeeze_options();
+  options.max_steps = 4000;
+  options.jam_steps = 50;
+  const auto run = relaxed(system, options);
+  EXPECT_EQ(run.report.stopped_by, "jammed");
+  EXPECT_FALSE(run.report.converged);
+  EXPECT_LT(run.report.steps, options.max_steps);
+  EXPECT_GT(run.report.guard.held_points, 0);
+  EXPECT_EQ(run.report.pull_through_events, 0);
+  options.jam_steps = 0;
+  options.max_steps = run.report.steps + 50;
+  EXPECT_EQ(relaxed(system, options).report.stopped_by, "step cap");
+}
+
 TEST(YarnRelax, WithoutTheGuardAndWithOversizedStepsTheAuditorSeesThePassThrough) {
   const auto yarn = skein::testing::linked_rings();
   const auto system = make_yarn_system(yarn, 0.3);
