@@ -21,6 +21,7 @@
 #include "cuda/device.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
+#include "relax/yarn_settings.hpp"
 #include "relax/yarn_standin.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
@@ -535,6 +536,30 @@ int main(int argc, char** argv) {
     if (*ry) {
       for (const auto& p : {ry_out, ry_report, ry_log, ry_png, ry_checkpoint})
         if (!p.empty()) check_writable(p);
+      if (is_project(ry_in) && std::filesystem::exists(ry_in)) {
+        // The yarn settings the app saved with the project stand where the command line gives none.
+        const auto project = mesh::read_project(ry_in);
+        if (!project.settings.empty()) {
+          const auto saved = relax::read_yarn_settings(project.settings, ry_in);
+          std::vector<std::string> taken;
+          const auto take = [&](const char* flag, auto apply) {
+            if (ry->count(flag) == 0) apply(), taken.push_back(flag);
+          };
+          take("--method", [&] { ry_method = relax::to_string(saved.relax.method); });
+          take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
+          take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
+          take("--take-up", [&] { ry_take_up = saved.take_up; });
+          take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
+          take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
+          take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
+          take("--jam-steps", [&] { ry_options.jam_steps = saved.relax.jam_steps; });
+          take("--rings", [&] { ry_local.rings = saved.local.rings; });
+          take("--halo", [&] { ry_local.halo = saved.local.halo; });
+          std::string list;
+          for (const auto& flag : taken) list += (list.empty() ? "" : " ") + flag;
+          spdlog::info("{} carries yarn settings (saved by the app): using them for {}", ry_in, list);
+        }
+      }
       ry_options.method = relax::parse_yarn_method(ry_method);
       ry_options.guard.enabled = !ry_no_guard;
       ry_options.guard.safe_bounds = !ry_no_bounds;

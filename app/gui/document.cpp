@@ -28,9 +28,11 @@ void Document::open(const std::filesystem::path& path) {
   EditState state;
   std::optional<mesh::InputMesh> input;
   std::filesystem::path project_path;
+  auto settings = m_yarn_settings;
   if (path.extension() == ".skein") {
     auto project = mesh::read_project(path);
     if (!project.input) throw Error(path.string(), "", "holds no input mesh to open");
+    settings = relax::read_yarn_settings(project.settings, path.string());
     input = std::move(project.input);
     state.stitch_size = project.stitch_size;
     state.labels = std::move(project.labels);
@@ -42,6 +44,7 @@ void Document::open(const std::filesystem::path& path) {
   }
   m_input = std::move(input);
   m_state = std::move(state);
+  m_yarn_settings = settings;
   m_path = project_path;
   m_undo.clear();
   emit opened();
@@ -56,9 +59,15 @@ void Document::save(const std::filesystem::path& path) {
   project.labels = m_state.labels;
   project.values = m_state.values;
   project.stitch = m_state.stitch;
+  project.settings = relax::yarn_setting_lines(m_yarn_settings);
   mesh::write_project(project, path);
   m_path = path;
   m_undo.setClean();
+}
+
+void Document::set_yarn_settings(const relax::YarnSettings& settings) {
+  settings.validate();
+  m_yarn_settings = settings;
 }
 
 void Document::apply(const QString& text, EditState next) {

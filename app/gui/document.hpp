@@ -8,6 +8,7 @@
 #include <QObject>
 #include <QUndoStack>
 
+#include "relax/yarn_settings.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/project.hpp"
@@ -59,8 +60,12 @@ public:
 
   /// Opens a mesh (any format assimp reads) or a `.skein` project; clears the undo history.
   void open(const std::filesystem::path& path);
-  /// Writes the project (`.skein`, atomically) and remembers the path.
+  /// Writes the project (`.skein`, atomically), the yarn settings with it, and remembers the path.
   void save(const std::filesystem::path& path);
+  /// What the yarn relaxations and the preview run with (Relax > Yarn settings), saved with the project: a
+  /// project opened brings its own (the defaults when it has none), a mesh opened keeps the current ones.
+  const relax::YarnSettings& yarn_settings() const { return m_yarn_settings; }
+  void set_yarn_settings(const relax::YarnSettings& settings);  ///< throws skein::Error for a value out of range
 
   // Labeling (Yuksel 2012 §5.1)
   void auto_label(int border_edge = -1);  ///< -1: the lowest border edge
@@ -118,6 +123,7 @@ private:
   EditState m_state;
   QUndoStack m_undo;
   std::filesystem::path m_path;
+  relax::YarnSettings m_yarn_settings;
 };
 
 }  // namespace skein::gui

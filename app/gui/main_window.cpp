@@ -259,7 +259,7 @@ void MainWindow::build_actions() {
   m_stop->setEnabled(false);
   relax->addSeparator();
   add(relax, tr("Yarn &settings..."), "yarnSettings", [this] {
-    YarnSettingsDialog dialog(m_yarn_settings, this);
+    YarnSettingsDialog dialog(m_doc.yarn_settings(), this);
     if (dialog.exec() == QDialog::Accepted) set_yarn_settings(dialog.settings());
   });
   auto* backends = new QActionGroup(this);
@@ -615,8 +615,7 @@ void MainWindow::start_job(RelaxJob* job) {
 
 bool MainWindow::set_yarn_settings(const YarnSettings& settings) {
   return attempt([&] {
-    settings.validate();
-    m_yarn_settings = settings;
+    m_doc.set_yarn_settings(settings);
   });
 }
 
@@ -654,10 +653,10 @@ bool MainWindow::emit_yarn() {
 bool MainWindow::preview_yarn() {
   return stitch_yarn_action([&](const EditState& state) {
     const auto yarn = emitted_yarn(state);
-    auto options = m_yarn_settings.relax;
+    auto options = m_doc.yarn_settings().relax;
     options.audit = false;  // the preview is certified on its own straight path from the emission
     relax::StandInOptions stand_in;
-    stand_in.take_up = m_yarn_settings.take_up;
+    stand_in.take_up = m_doc.yarn_settings().take_up;
     stand_in.patterns = m_tiled_patterns;
     relax::StandInReport report;
     const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, stand_in, report);
@@ -682,12 +681,12 @@ bool MainWindow::relax_yarn() {
     if (!state.stitch) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
     if (!state.yarn) throw Error("emit the yarn first (Relax > Emit yarn)");
     if (state.yarn_relaxed) throw Error("the yarn is relaxed already; emit it again to start over");
-    if (m_yarn_settings.relax.active_set.enabled && m_backend == relax::Backend::Cuda)
+    if (m_doc.yarn_settings().relax.active_set.enabled && m_backend == relax::Backend::Cuda)
       throw Error("the active set runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
     m_job_is_yarn = true;
     // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
     const auto start = state.yarn_preview ? emitted_yarn(state) : *state.yarn;
-    auto* job = new YarnRelaxJob(start, *state.stitch, m_yarn_settings, m_backend);
+    auto* job = new YarnRelaxJob(start, *state.stitch, m_doc.yarn_settings(), m_backend);
     // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn.
     if (state.previous) job->warm_start(state.previous->stitch, state.previous->relaxed);
     start_job(job);

@@ -75,7 +75,7 @@ public:
   /// What Relax yarn and Preview yarn run with (Relax > Yarn settings); false, with an error shown, for values
   /// out of range.
   bool set_yarn_settings(const YarnSettings& settings);
-  const YarnSettings& yarn_settings() const { return m_yarn_settings; }
+  const YarnSettings& yarn_settings() const { return m_doc.yarn_settings(); }
 
   bool relax_mesh();
   bool emit_yarn();
@@ -129,7 +129,6 @@ private:
   std::unique_ptr<RelaxJob> m_job;
   bool m_job_is_yarn = false, m_paused = false;
   relax::Backend m_backend = relax::Backend::Auto;
-  YarnSettings m_yarn_settings;
   std::vector<mesh::Pattern> m_tiled_patterns;  ///< the patterns tiled by re-meshing, whose repeats the stand-in looks for
   QElapsedTimer m_live_clock;  ///< since the last live redraw
   qint64 m_live_wait = 0;      ///< [ms] before the next one

@@ -11,15 +11,8 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
-#include "common/error.hpp"
 
 namespace skein::gui {
-
-void YarnSettings::validate() const {
-  relax.validate();
-  local.validate();
-  if (!(take_up >= 0.1 && take_up <= 10)) throw Error("", "yarn settings", "the take-up must be between 0.1 and 10, found " + std::to_string(take_up));
-}
 
 namespace {
 

@@ -2,8 +2,7 @@
 
 #include <QDialog>
 
-#include "relax/yarn_local.hpp"
-#include "relax/yarn_relax.hpp"
+#include "relax/yarn_settings.hpp"
 
 class QCheckBox;
 class QComboBox;
@@ -12,14 +11,8 @@ class QSpinBox;
 
 namespace skein::gui {
 
-/// What Relax yarn (whole or local after edits) and the stand-in preview run with: the CLI's relax-yarn options
-/// that an artist sets in Relax > Yarn settings.
-struct YarnSettings {
-  relax::YarnRelaxOptions relax;   ///< method, stop rule, audit, active set, contact sampling
-  double take_up = 1.0;            ///< rest length of the yarn × its emitted length (relax::make_yarn_system)
-  relax::LocalRelaxOptions local;  ///< rings relaxed and held after stitch edits
-  void validate() const;           ///< throws skein::Error for a value out of range
-};
+/// What Relax yarn (whole or local after edits) and the stand-in preview run with; saved with the project.
+using YarnSettings = relax::YarnSettings;
 
 /// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, takeUp,
 /// audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.

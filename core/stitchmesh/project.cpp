@@ -1,5 +1,7 @@
 #include "stitchmesh/project.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -74,6 +76,7 @@ std::string project_text(const Project& p) {
   out += ' ';
   put(out, p.stitch_size.height);
   out += '\n';
+  for (const auto& setting : p.settings) out += "set " + setting.key + ' ' + setting.value + '\n';
   if (p.input) {
     out += "input-mesh\n";
     for (const auto& v : p.input->points()) {
@@ -163,6 +166,14 @@ Project parse_project(const std::string& text, const std::string& name) {
       p.stitch_size = {line.real(1), line.real(2)};
       if (!(p.stitch_size.width > 0 && p.stitch_size.height > 0) || !std::isfinite(p.stitch_size.width + p.stitch_size.height))
         line.fail("stitch width and height must be positive numbers");
+    } else if (key == "set") {
+      line.expect_count(3, 3, "a key and a value");
+      const std::string name(line.word(1));
+      if (!std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-'; }))
+        line.fail("setting key '" + name + "' may hold only letters, digits, '.', '_' and '-'");
+      for (const auto& earlier : p.settings)
+        if (earlier.key == name) line.fail("'" + name + "' is set twice (first at line " + std::to_string(earlier.line) + ")");
+      p.settings.push_back({name, std::string(line.word(2)), line_no});
     } else if (key == "input-mesh") {
       if (section != Section::None) line.fail("'input-mesh' must come before 'labels' and 'stitch-mesh', once");
       section = Section::Input;

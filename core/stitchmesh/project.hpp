@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stitchmesh/input_mesh.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -9,6 +10,14 @@
 #include "stitchmesh/tessellation.hpp"
 
 namespace skein::mesh {
+
+/// One `set KEY VALUE` line of a project: a setting the app saves with the project (the yarn relaxation's:
+/// relax::read_yarn_settings reads them), kept here as text with its line for errors.
+struct ProjectSetting {
+  std::string key, value;
+  int line = 0;  ///< where it was read, 0 when made in memory
+  bool operator==(const ProjectSetting& o) const { return key == o.key && value == o.value; }
+};
 
 /// Everything a user saves: the input mesh with its labels and tessellation values, and the stitch mesh.
 /// Stored as a `.skein` file (docs/FORMATS.md): versioned, line-based text, numbers in their shortest
@@ -19,6 +28,7 @@ struct Project {
   std::optional<Labeling> labels;              ///< needs input
   std::optional<TessellationValues> values;    ///< needs labels
   std::optional<StitchMesh> stitch;
+  std::vector<ProjectSetting> settings;  ///< keys of letters, digits, '.', '_' and '-', each once
 };
 
 inline constexpr int kProjectVersion = 1;

@@ -297,6 +297,30 @@ TEST(Cli, RelaxYarnTakesAdaptiveContactSamplesAndRefusesASpacingThatLetsYarnSlip
   EXPECT_FALSE(std::filesystem::exists(none));
 }
 
+TEST(Cli, RelaxYarnTakesTheYarnSettingsSavedWithTheProjectUnlessTheCommandLineGivesThem) {
+  ScratchDir dir;
+  const auto plain = dir / "plain.skein", project = dir / "set.skein", bad = dir / "bad.skein", out = dir / "y.bcc", report = dir / "r.json";
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + plain.string()).status, 0);
+  std::string text = slurp(plain);
+  const auto after_header = text.find('\n') + 1;
+  std::ofstream(project) << text.substr(0, after_header) + "set yarn.max_steps 3\nset yarn.method euler\n" + text.substr(after_header);
+  auto r = run_skein("relax-yarn " + project.string() + " --no-audit -o " + out.string() + " --report " + report.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("carries yarn settings (saved by the app): using them for --method --tolerance --max-steps"), std::string::npos) << r.output;
+  for (const char* key : {"\"steps\": 3", "\"stopped_by\": \"step cap\"", "\"method\": \"euler\""}) EXPECT_NE(slurp(report).find(key), std::string::npos) << key;
+  r = run_skein("relax-yarn " + project.string() + " --no-audit --max-steps 5 -o " + out.string() + " --report " + report.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(report).find("\"steps\": 5"), std::string::npos);
+  // A setting this skein does not know is refused, with the file and the line, and nothing is written.
+  std::ofstream(bad) << text.substr(0, after_header) + "set yarn.colour red\n" + text.substr(after_header);
+  const auto none = dir / "none.bcc";
+  r = run_skein("relax-yarn " + bad.string() + " -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("line 2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'yarn.colour' is not a setting this skein knows"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(none));
+}
+
 TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   ScratchDir dir;
   const auto bad = dir.write("bad.ckp", "SKEINCKP and then nothing useful");

@@ -394,6 +394,36 @@ private slots:
     QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
   }
 
+  void yarn_settings_are_saved_with_the_project() {
+    QTemporaryDir dir;
+    MainWindow w;
+    QVERIFY(swatch_yarn_shown(w));
+    auto settings = w.yarn_settings();
+    settings.relax.tolerance = 0.004;
+    settings.take_up = 0.92;
+    settings.local.rings = 2;
+    QVERIFY(w.set_yarn_settings(settings));
+    const QString path = dir.filePath("swatch.skein");
+    QVERIFY2(w.save_project(path), qPrintable(w.last_error()));
+    MainWindow other;
+    QVERIFY2(other.open_file(path), qPrintable(other.last_error()));
+    QCOMPARE(other.yarn_settings().relax.tolerance, 0.004);
+    QCOMPARE(other.yarn_settings().take_up, 0.92);
+    QCOMPARE(other.yarn_settings().local.rings, 2);
+    // A project with a setting this skein does not know is refused, naming its line; what is open stays.
+    QFile saved(path);
+    QVERIFY(saved.open(QIODevice::ReadOnly));
+    const QString text = QString::fromUtf8(saved.readAll()).replace("set yarn.halo 1", "set yarn.colour red");
+    const QString bad = dir.filePath("bad.skein");
+    QFile out(bad);
+    QVERIFY(out.open(QIODevice::WriteOnly));
+    out.write(text.toUtf8());
+    out.close();
+    QVERIFY(!other.open_file(bad));
+    QVERIFY2(other.last_error().contains("'yarn.colour' is not a setting") && other.last_error().contains("line "), qPrintable(other.last_error()));
+    QCOMPARE(other.yarn_settings().relax.tolerance, 0.004);
+  }
+
   void yarn_preview_maps_stand_ins_without_relaxing() {
     MainWindow w;
     QVERIFY(swatch_yarn_shown(w));

@@ -22,6 +22,7 @@ mesh::Project full_project() {
   auto s = mesh::tessellate(*p.input, *p.labels, *p.values);
   s = mesh::fill(s, skein::testing::all_faces(s), mesh::parse_fill("rib2x2"));
   p.stitch = mesh::mark_cable(s, mesh::top_edge_path(s, 3, 2, 4), 1, -1);
+  p.settings = {{"yarn.tolerance", "0.005"}, {"yarn.method", "euler"}};
   return p;
 }
 
@@ -46,6 +47,8 @@ TEST(Project, RoundTripIsExact) {
   EXPECT_EQ(back.values->marked, p.values->marked);
   EXPECT_TRUE(*back.stitch == *p.stitch);
   EXPECT_EQ(back.stitch_size.width, 6.25);
+  EXPECT_EQ(back.settings, p.settings);
+  EXPECT_EQ(back.settings[1].line, 4);  // after the header and the stitch size
 }
 
 TEST(Project, FilesRoundTripAndWriteAtomically) {
@@ -86,6 +89,9 @@ TEST(Project, BadFilesNameTheLineAndRule) {
       {h + "stitch-mesh\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 0 2 k -1 0 1 2 3\nend\n", "line 14", "leaves no top edge"},
       {h + "stitch-mesh\nv 0 0 0\nf 0 1 k -1 0 0 0 9\nend\n", "line 11", "out of range"},
       {"skein 1\ninput-mesh\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 0 1 2\nend\n", "face 0", "zero area"},
+      {"skein 1\nset yarn.tolerance\nend\n", "line 2", "expected a key and a value"},
+      {"skein 1\nset yarn/tolerance 0.1\nend\n", "line 2", "may hold only letters"},
+      {"skein 1\nset yarn.halo 2\nset yarn.halo 3\nend\n", "line 3", "'yarn.halo' is set twice (first at line 2)"},
   };
   for (const auto& c : cases) {
     const std::string msg = parse_error(c.text);
