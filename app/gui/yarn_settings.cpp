@@ -56,6 +56,9 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   m_method->setCurrentIndex(m_method->findData(static_cast<int>(r.method)));
   m_tolerance = number("tolerance", 1e-4, 0.5, 0.005, 4, r.tolerance, tr("Stop when |∇E| / |∇E₀| is below this (Leaf eq. 5, ε1)"));
   m_max_steps = count("maxSteps", 1, 1000000, static_cast<int>(std::min<long>(r.max_steps, 1000000)), tr("Stop after this many steps"));
+  m_jam_steps = count("jamSteps", 0, 1000000, static_cast<int>(std::min<long>(r.jam_steps, 1000000)),
+                      tr("Stop, not converged, when for this many steps in a row the guard held yarn against yarn and the energy hardly fell "
+                         "(0: never)"));
   m_take_up = number("takeUp", 0.1, 10, 0.01, 3, settings.take_up, tr("Rest length of the yarn × its emitted length: below 1 the yarn pulls tighter"));
   m_audit = flag("audit", tr("Audit every step for pull-through"), r.audit,
                  tr("The independent topology auditor checks every step; off, the guard still prevents pull-through but no count is reported"));
@@ -77,6 +80,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   form->addRow(tr("Method"), m_method);
   form->addRow(tr("Stop tolerance"), m_tolerance);
   form->addRow(tr("Step cap"), m_max_steps);
+  form->addRow(tr("Stop when jammed for [steps]"), m_jam_steps);
   form->addRow(tr("Take-up"), m_take_up);
   form->addRow(m_audit);
   form->addRow(m_active_set);
@@ -92,6 +96,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
     m_method->setCurrentIndex(m_method->findData(static_cast<int>(defaults.relax.method)));
     m_tolerance->setValue(defaults.relax.tolerance);
     m_max_steps->setValue(static_cast<int>(defaults.relax.max_steps));
+    m_jam_steps->setValue(static_cast<int>(defaults.relax.jam_steps));
     m_take_up->setValue(defaults.take_up);
     m_audit->setChecked(defaults.relax.audit);
     m_active_set->setChecked(defaults.relax.active_set.enabled);
@@ -109,6 +114,7 @@ YarnSettings YarnSettingsDialog::settings() const {
   s.relax.method = static_cast<relax::YarnMethod>(m_method->currentData().toInt());
   s.relax.tolerance = m_tolerance->value();
   s.relax.max_steps = m_max_steps->value();
+  s.relax.jam_steps = m_jam_steps->value();
   s.take_up = m_take_up->value();
   s.relax.audit = m_audit->isChecked();
   s.relax.active_set.enabled = m_active_set->isChecked();

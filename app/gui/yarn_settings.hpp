@@ -14,8 +14,8 @@ namespace skein::gui {
 /// What Relax yarn (whole or local after edits) and the stand-in preview run with; saved with the project.
 using YarnSettings = relax::YarnSettings;
 
-/// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, takeUp,
-/// audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
+/// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, jamSteps,
+/// takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
 class YarnSettingsDialog final : public QDialog {
   Q_OBJECT
 public:
@@ -27,7 +27,7 @@ private:
   YarnSettings m_base;
   QComboBox* m_method = nullptr;
   QDoubleSpinBox *m_tolerance = nullptr, *m_take_up = nullptr, *m_spacing = nullptr;
-  QSpinBox *m_max_steps = nullptr, *m_rings = nullptr, *m_halo = nullptr;
+  QSpinBox *m_max_steps = nullptr, *m_jam_steps = nullptr, *m_rings = nullptr, *m_halo = nullptr;
   QCheckBox *m_audit = nullptr, *m_active_set = nullptr, *m_adaptive = nullptr;
 };
 

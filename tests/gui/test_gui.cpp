@@ -360,16 +360,20 @@ private slots:
     QVERIFY(dialog.findChild<QDoubleSpinBox*>("contactSpacing")->isEnabled());
     dialog.findChild<QDoubleSpinBox*>("contactSpacing")->setValue(2.5);
     dialog.findChild<QSpinBox*>("rings")->setValue(2);
+    QCOMPARE(dialog.findChild<QSpinBox*>("jamSteps")->value(), 100);
+    dialog.findChild<QSpinBox*>("jamSteps")->setValue(250);
     QVERIFY(dialog.grab().save(QDir(shots_dir()).filePath("gui-yarn-settings.png")));
     const auto settings = dialog.settings();
     QVERIFY(settings.relax.active_set.enabled);
     QCOMPARE(settings.relax.sampling.spacing, 2.5);
     QCOMPARE(settings.take_up, 0.95);
     QCOMPARE(settings.local.rings, 2);
+    QCOMPARE(settings.relax.jam_steps, 250);
     dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::RestoreDefaults)->click();
     QVERIFY(!dialog.settings().relax.active_set.enabled);
     QCOMPARE(dialog.settings().relax.sampling.spacing, 0.0);
     QCOMPARE(dialog.settings().take_up, 1.0);
+    QCOMPARE(dialog.settings().relax.jam_steps, 100);
 
     MainWindow w;
     QVERIFY(swatch_yarn_shown(w));
