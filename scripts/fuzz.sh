@@ -11,7 +11,7 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
   -DSKEIN_FUZZ=ON -DSKEIN_CUDA=OFF -DSKEIN_GUI=OFF -DSKEIN_TESTS=OFF -DSKEIN_BENCH=OFF >/dev/null
 readers=(pattern project job bcc stitch_model checkpoint)
 cmake --build build-fuzz --target "${readers[@]/#/fuzz_}"
-declare -A seeds=([pattern]=patterns [project]=models [job]=jobs [bcc]=fuzz/seeds/bcc [stitch_model]=stitches [checkpoint]=fuzz/seeds/checkpoint)
+declare -A seeds=([pattern]=patterns [project]="models fuzz/seeds/project" [job]=jobs [bcc]=fuzz/seeds/bcc [stitch_model]=stitches [checkpoint]=fuzz/seeds/checkpoint)
 rm -rf build-fuzz/crashes
 mkdir -p build-fuzz/crashes
 for reader in "${readers[@]}"; do
@@ -28,7 +28,7 @@ for reader in "${readers[@]}"; do
   mkdir -p "$corpus"
   echo "fuzzing the $reader reader for ${seconds} s"
   "$harness" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
-    -artifact_prefix="build-fuzz/crashes/$reader-" "$corpus" "${seeds[$reader]}" 2>&1 | grep -E '^(stat::number_of_executed_units|stat::new_units_added|==|SUMMARY|INFO: Seed)' || true
+    -artifact_prefix="build-fuzz/crashes/$reader-" "$corpus" ${seeds[$reader]} 2>&1 | grep -E '^(stat::number_of_executed_units|stat::new_units_added|==|SUMMARY|INFO: Seed)' || true
   if compgen -G "build-fuzz/crashes/$reader-*" >/dev/null; then
     echo "the $reader reader crashed; inputs: $(ls build-fuzz/crashes/$reader-*)" >&2
     exit 1
