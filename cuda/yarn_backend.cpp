@@ -13,6 +13,11 @@ std::unique_ptr<relax::YarnRelaxer> make_yarn_relaxer(relax::Backend backend, co
     spdlog::info("active set: relaxing on the CPU (the CUDA relaxer integrates every point)");
     return relax::make_cpu_yarn_relaxer(system, targets, options);
   }
+  if (options.clipped_scale) {
+    if (backend == relax::Backend::Cuda) throw Error("", "--stop-scale clipped", "runs on the CPU only; use --backend cpu or auto");
+    spdlog::info("clipped stop scale: relaxing on the CPU (the CUDA relaxer takes |∇E_0| whole)");
+    return relax::make_cpu_yarn_relaxer(system, targets, options);
+  }
   if (backend == relax::Backend::Auto && !targets.periodic.empty()) {
     spdlog::info("periodic patch: relaxing on the CPU (the CUDA relaxer has no periodic boundary conditions yet)");
     return relax::make_cpu_yarn_relaxer(system, targets, options);

@@ -288,6 +288,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
             {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
             {"yarn", yarn_json(yarn_out_curves)},
             {"history", {{"step", steps}, {"residual", residuals}, {"energy", energies}}}};
+  j["stop_scale"] = options.clipped_scale ? "clipped" : "first";
   if (options.active_set.enabled) {
     const auto& a = report.active;
     const double all = static_cast<double>(report.steps) * system.num_points();

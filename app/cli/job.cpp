@@ -117,7 +117,7 @@ relax::MeshRelaxOptions mesh_options(const Keys& k) {
 }
 
 relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
-  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "stop_scale", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
           "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
   o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
@@ -126,6 +126,7 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
   o.max_seconds = k.number("max_seconds", 0, 0, 1e9);
   o.tolerance = k.number("tolerance", o.tolerance, 0, 1);
   o.stall = k.number("stall", o.stall, 0, 1e3);
+  o.clipped_scale = k.choice("stop_scale", "first", {"first", "clipped"}) == "clipped";
   o.jam_steps = k.integer("jam_steps", o.jam_steps, 0, 1L << 40);
   o.jam_drop = k.number("jam_drop", o.jam_drop, 0, 1);
   o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);

@@ -169,6 +169,12 @@ int main(int argc, char** argv) {
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
   ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  std::string ry_stop_scale = "first";
+  ry->add_option("--stop-scale", ry_stop_scale,
+                 "Leaf eq. 5's |∇E_0|: first (whole) or clipped (each point's force clipped to the largest of all but the largest 0.1 %, "
+                 "so that a few kinks of the emitted yarn do not end the run early; CPU only)")
+      ->check(CLI::IsMember({"first", "clipped"}))
+      ->capture_default_str();
   ry->add_option("--jam-steps", ry_options.jam_steps,
                  "stop, not converged, when for this many steps in a row the guard held yarn against yarn on every step and the energy "
                  "fell by less than --jam-drop of itself over them (0: never)")
@@ -561,6 +567,7 @@ int main(int argc, char** argv) {
         }
       }
       ry_options.method = relax::parse_yarn_method(ry_method);
+      ry_options.clipped_scale = ry_stop_scale == "clipped";
       ry_options.guard.enabled = !ry_no_guard;
       ry_options.guard.safe_bounds = !ry_no_bounds;
       ry_options.audit = !ry_no_audit;

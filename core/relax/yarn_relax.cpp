@@ -47,6 +47,20 @@ double peak_share(const Eigen::Matrix3Xd& grad) {
   return std::accumulate(squared.begin(), squared.begin() + top, 0.0) / total;
 }
 
+/// |∇E| with every point's force clipped to the largest force left when the largest 0.1 % are set aside.
+double clipped_norm(const Eigen::Matrix3Xd& grad) {
+  std::vector<double> squared(grad.cols());
+  for (long p = 0; p < grad.cols(); ++p) squared[p] = grad.col(p).squaredNorm();
+  if (squared.empty()) return 0;
+  const long top = std::max<long>(1, grad.cols() / 1000);
+  std::vector<double> sorted = squared;
+  std::nth_element(sorted.begin(), sorted.begin() + top, sorted.end(), std::greater<>());
+  const double cap = top < static_cast<long>(sorted.size()) ? sorted[top] : sorted.back();
+  double sum = 0;
+  for (double s : squared) sum += std::min(s, cap);
+  return std::sqrt(sum);
+}
+
 void check_param(double v, const char* name, bool allow_zero = true) {
   if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
     throw Error("", "yarn model", std::string(name) + " must be " + (allow_zero ? "finite and not negative" : "positive") + ", found " + std::to_string(v));
@@ -82,9 +96,9 @@ bool JamWatch::jammed(double energy, long held) {
 }
 
 std::string JamWatch::describe() const {
-  return fmt::format("jammed: the guard held yarn against yarn on each of the last {} steps ({} points on the last) and the energy fell by "
+  return fmt::format("jammed: the guard held yarn against yarn on each of the last {} steps ({} points on the last) and the energy {} by "
                      "{:.4f} % over them; the run stops here, not converged (--jam-steps 0 goes on)",
-                     m_steps, m_held, 100 * m_fell);
+                     m_steps, m_held, m_fell < 0 ? "rose" : "fell only", 100 * std::abs(m_fell));
 }
 
 void YarnRelaxOptions::validate() const {
@@ -314,9 +328,11 @@ public:
       good_points = state.points;
       good_velocities = state.velocities;
       if (state.residual0 == 0) {  // a state may bring its own scale (local relaxation)
-        state.residual0 = residual;
+        state.residual0 = m_options.clipped_scale ? clipped_norm(grad) : residual;
         report.first_residual_peak = peak_share(grad);
-        if (report.first_residual_peak > 0.5) {
+        if (m_options.clipped_scale)
+          spdlog::info("stop rule's scale: |∇E_0| with the largest 0.1 % of the forces clipped, {:.3g} of its whole value", state.residual0 / residual);
+        else if (report.first_residual_peak > 0.5) {
           Eigen::Index largest;
           grad.colwise().squaredNorm().maxCoeff(&largest);
           const Eigen::Vector3d at = state.points.col(largest);

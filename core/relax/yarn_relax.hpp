@@ -98,6 +98,9 @@ struct YarnRelaxOptions {
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
   double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
   double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
+  /// Leaf eq. 5's scale |∇E_0| with every point's force clipped to the largest of all but the largest 0.1 %, so
+  /// that a few kinks of the emitted yarn do not set it (YarnRelaxReport::first_residual_peak); CPU only.
+  bool clipped_scale = false;
   long max_steps = 20000;
   double max_seconds = 0;       ///< wall-time cap, 0 for none
   /// A jam (JamWatch): the run stops, not converged, when for `jam_steps` steps in a row the guard held points

@@ -273,6 +273,16 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   r = run_skein("relax-yarn " + project.string() + " --active-set --backend cuda -o " + none.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("the active set runs on the CPU only"), std::string::npos) << r.output;
+  // The clipped stop scale: reported, and only on the CPU.
+  r = run_skein("relax-yarn " + project.string() + " --stop-scale clipped --max-steps 5 --no-audit -o " + relaxed.string() + " --report " + active.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(active).find("\"stop_scale\": \"clipped\""), std::string::npos);
+  r = run_skein("relax-yarn " + project.string() + " --stop-scale clipped --backend cuda -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("runs on the CPU only"), std::string::npos) << r.output;
+  r = run_skein("relax-yarn " + project.string() + " --stop-scale median -o " + none.string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(std::filesystem::exists(none));
 }
 
 TEST(Cli, RelaxYarnTakesAdaptiveContactSamplesAndRefusesASpacingThatLetsYarnSlipThrough) {

@@ -185,6 +185,27 @@ TEST(YarnRelax, LinkedRingsSqueezedTightJamAndTheRunSaysSo) {
   EXPECT_EQ(relaxed(system, options).report.stopped_by, "step cap");
 }
 
+TEST(YarnRelax, AClippedStopScaleRelaxesPastAKink) {
+  // Thirty rings far apart (2,160 points), one point of one pulled out into a kink: its forces dominate
+  // |∇E_0|, so Leaf's relative rule is met once the kink has eased. Clipped, the scale leaves the largest 0.1 %
+  // of the forces (2) out and the run relaxes the rings further.
+  mesh::YarnCurves yarn;
+  yarn.radius = 0.5;
+  for (int k = 0; k < 30; ++k) skein::testing::add_ring(yarn, {10.0 * k, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, 72);
+  yarn.points[0].x() += 1.5;
+  const auto system = make_yarn_system(yarn);
+  YarnRelaxOptions options;
+  const auto leaf = relaxed(system, options);
+  options.clipped_scale = true;
+  const auto clipped = relaxed(system, options);
+  ASSERT_TRUE(leaf.report.converged && clipped.report.converged) << leaf.report.stopped_by << " " << clipped.report.stopped_by;
+  EXPECT_GT(leaf.report.first_residual_peak, 0.5);
+  EXPECT_GT(clipped.report.steps, leaf.report.steps);
+  EXPECT_LT(clipped.report.energy, leaf.report.energy);
+  std::printf("Leaf's scale: %ld steps, energy %.6g; clipped: %ld steps, energy %.6g\n", leaf.report.steps, leaf.report.energy, clipped.report.steps,
+              clipped.report.energy);
+}
+
 TEST(YarnRelax, WithoutTheGuardAndWithOversizedStepsTheAuditorSeesThePassThrough) {
   const auto yarn = skein::testing::linked_rings();
   const auto system = make_yarn_system(yarn, 0.3);
