@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include <csignal>
 
@@ -265,21 +266,17 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--stand-in maps patches over a project's stitch faces"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(none));
-  // The active set: a relaxation that reports what it did, and only on the CPU.
-  const auto relaxed = dir / "relaxed.bcc", active = dir / "active.json";
-  r = run_skein("relax-yarn " + project.string() + " --active-set --no-audit -o " + relaxed.string() + " --report " + active.string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(slurp(active).find("\"integrated_share\""), std::string::npos);
-  r = run_skein("relax-yarn " + project.string() + " --active-set --backend cuda -o " + none.string());
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.output.find("the active set runs on the CPU only"), std::string::npos) << r.output;
-  // The clipped stop scale: reported, and only on the CPU.
-  r = run_skein("relax-yarn " + project.string() + " --stop-scale clipped --max-steps 5 --no-audit -o " + relaxed.string() + " --report " + active.string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(slurp(active).find("\"stop_scale\": \"clipped\""), std::string::npos);
-  r = run_skein("relax-yarn " + project.string() + " --stop-scale clipped --backend cuda -o " + none.string());
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.output.find("runs on the CPU only"), std::string::npos) << r.output;
+  // The active set and the clipped stop scale: relaxations that report what they did, and only on the CPU.
+  const auto relaxed = dir / "relaxed.bcc", report_file = dir / "cpu-only.json";
+  for (const auto& [flags, key, refusal] : {std::tuple{std::string("--active-set"), std::string("\"integrated_share\""), std::string("the active set runs on the CPU only")},
+                                            {"--stop-scale clipped", "\"stop_scale\": \"clipped\"", "runs on the CPU only"}}) {
+    r = run_skein("relax-yarn " + project.string() + " " + flags + " --max-steps 20 --no-audit -o " + relaxed.string() + " --report " + report_file.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(slurp(report_file).find(key), std::string::npos) << key;
+    r = run_skein("relax-yarn " + project.string() + " " + flags + " --backend cuda -o " + none.string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.output.find(refusal), std::string::npos) << r.output;
+  }
   r = run_skein("relax-yarn " + project.string() + " --stop-scale median -o " + none.string());
   EXPECT_NE(r.status, 0);
   EXPECT_FALSE(std::filesystem::exists(none));
