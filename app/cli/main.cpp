@@ -553,6 +553,7 @@ int main(int argc, char** argv) {
           };
           take("--method", [&] { ry_method = relax::to_string(saved.relax.method); });
           take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
+          take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
           take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
           take("--take-up", [&] { ry_take_up = saved.take_up; });
           take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });

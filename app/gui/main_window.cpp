@@ -683,6 +683,8 @@ bool MainWindow::relax_yarn() {
     if (state.yarn_relaxed) throw Error("the yarn is relaxed already; emit it again to start over");
     if (m_doc.yarn_settings().relax.active_set.enabled && m_backend == relax::Backend::Cuda)
       throw Error("the active set runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
+    if (m_doc.yarn_settings().relax.clipped_scale && m_backend == relax::Backend::Cuda)
+      throw Error("the clipped stop scale runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
     m_job_is_yarn = true;
     // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
     const auto start = state.yarn_preview ? emitted_yarn(state) : *state.yarn;

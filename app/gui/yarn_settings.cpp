@@ -60,6 +60,9 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
                       tr("Stop, not converged, when for this many steps in a row the guard held yarn against yarn and the energy hardly fell "
                          "(0: never)"));
   m_take_up = number("takeUp", 0.1, 10, 0.01, 3, settings.take_up, tr("Rest length of the yarn × its emitted length: below 1 the yarn pulls tighter"));
+  m_clipped = flag("clippedScale", tr("Stop scale without the largest 0.1 % of the first forces (CPU)"), r.clipped_scale,
+                   tr("Leaf's stop rule measures |∇E| against |∇E₀|; clipped, a few kinks of the emitted yarn do not set that scale, and "
+                      "the run relaxes further (and longer)"));
   m_audit = flag("audit", tr("Audit every step for pull-through"), r.audit,
                  tr("The independent topology auditor checks every step; off, the guard still prevents pull-through but no count is reported"));
   m_active_set = flag("activeSet", tr("Active set: converged points stop being integrated (CPU)"), r.active_set.enabled,
@@ -81,6 +84,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   form->addRow(tr("Stop tolerance"), m_tolerance);
   form->addRow(tr("Step cap"), m_max_steps);
   form->addRow(tr("Stop when jammed for [steps]"), m_jam_steps);
+  form->addRow(m_clipped);
   form->addRow(tr("Take-up"), m_take_up);
   form->addRow(m_audit);
   form->addRow(m_active_set);
@@ -97,6 +101,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
     m_tolerance->setValue(defaults.relax.tolerance);
     m_max_steps->setValue(static_cast<int>(defaults.relax.max_steps));
     m_jam_steps->setValue(static_cast<int>(defaults.relax.jam_steps));
+    m_clipped->setChecked(defaults.relax.clipped_scale);
     m_take_up->setValue(defaults.take_up);
     m_audit->setChecked(defaults.relax.audit);
     m_active_set->setChecked(defaults.relax.active_set.enabled);
@@ -115,6 +120,7 @@ YarnSettings YarnSettingsDialog::settings() const {
   s.relax.tolerance = m_tolerance->value();
   s.relax.max_steps = m_max_steps->value();
   s.relax.jam_steps = m_jam_steps->value();
+  s.relax.clipped_scale = m_clipped->isChecked();
   s.take_up = m_take_up->value();
   s.relax.audit = m_audit->isChecked();
   s.relax.active_set.enabled = m_active_set->isChecked();

@@ -15,7 +15,7 @@ namespace skein::gui {
 using YarnSettings = relax::YarnSettings;
 
 /// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, jamSteps,
-/// takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
+/// clippedScale, takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
 class YarnSettingsDialog final : public QDialog {
   Q_OBJECT
 public:
@@ -28,7 +28,7 @@ private:
   QComboBox* m_method = nullptr;
   QDoubleSpinBox *m_tolerance = nullptr, *m_take_up = nullptr, *m_spacing = nullptr;
   QSpinBox *m_max_steps = nullptr, *m_jam_steps = nullptr, *m_rings = nullptr, *m_halo = nullptr;
-  QCheckBox *m_audit = nullptr, *m_active_set = nullptr, *m_adaptive = nullptr;
+  QCheckBox *m_clipped = nullptr, *m_audit = nullptr, *m_active_set = nullptr, *m_adaptive = nullptr;
 };
 
 }  // namespace skein::gui

@@ -46,6 +46,11 @@ const std::map<std::string, Key>& keys() {
       {"yarn.active_set", {[](const YarnSettings& s) { return std::string(s.relax.active_set.enabled ? "true" : "false"); },
                            [](YarnSettings& s, const std::string& v) { s.relax.active_set.enabled = boolean(v); }}},
       {"yarn.contact_spacing", {[](const YarnSettings& s) { return text(s.relax.sampling.spacing); }, [](YarnSettings& s, const std::string& v) { s.relax.sampling.spacing = number<double>(v); }}},
+      {"yarn.stop_scale", {[](const YarnSettings& s) { return std::string(s.relax.clipped_scale ? "clipped" : "first"); },
+                           [](YarnSettings& s, const std::string& v) {
+                             if (v != "first" && v != "clipped") throw Error("", "", "'" + v + "' is neither first nor clipped");
+                             s.relax.clipped_scale = v == "clipped";
+                           }}},
       {"yarn.jam_steps", {[](const YarnSettings& s) { return std::to_string(s.relax.jam_steps); }, [](YarnSettings& s, const std::string& v) { s.relax.jam_steps = number<long>(v); }}},
       {"yarn.rings", {[](const YarnSettings& s) { return std::to_string(s.local.rings); }, [](YarnSettings& s, const std::string& v) { s.local.rings = number<int>(v); }}},
       {"yarn.halo", {[](const YarnSettings& s) { return std::to_string(s.local.halo); }, [](YarnSettings& s, const std::string& v) { s.local.halo = number<int>(v); }}},

@@ -18,8 +18,8 @@ struct YarnSettings {
 };
 
 /// The settings as a project's `set` lines, every key written (docs/FORMATS.md: yarn.method, yarn.tolerance,
-/// yarn.max_steps, yarn.take_up, yarn.audit, yarn.active_set, yarn.contact_spacing, yarn.jam_steps, yarn.rings,
-/// yarn.halo).
+/// yarn.stop_scale, yarn.max_steps, yarn.take_up, yarn.audit, yarn.active_set, yarn.contact_spacing,
+/// yarn.jam_steps, yarn.rings, yarn.halo).
 std::vector<mesh::ProjectSetting> yarn_setting_lines(const YarnSettings& settings);
 
 /// The settings a project's `set` lines give, the defaults where a key is missing; throws skein::Error naming

@@ -362,6 +362,7 @@ private slots:
     dialog.findChild<QSpinBox*>("rings")->setValue(2);
     QCOMPARE(dialog.findChild<QSpinBox*>("jamSteps")->value(), 100);
     dialog.findChild<QSpinBox*>("jamSteps")->setValue(250);
+    dialog.findChild<QCheckBox*>("clippedScale")->setChecked(true);
     QVERIFY(dialog.grab().save(QDir(shots_dir()).filePath("gui-yarn-settings.png")));
     const auto settings = dialog.settings();
     QVERIFY(settings.relax.active_set.enabled);
@@ -369,11 +370,13 @@ private slots:
     QCOMPARE(settings.take_up, 0.95);
     QCOMPARE(settings.local.rings, 2);
     QCOMPARE(settings.relax.jam_steps, 250);
+    QVERIFY(settings.relax.clipped_scale);
     dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::RestoreDefaults)->click();
     QVERIFY(!dialog.settings().relax.active_set.enabled);
     QCOMPARE(dialog.settings().relax.sampling.spacing, 0.0);
     QCOMPARE(dialog.settings().take_up, 1.0);
     QCOMPARE(dialog.settings().relax.jam_steps, 100);
+    QVERIFY(!dialog.settings().relax.clipped_scale);
 
     MainWindow w;
     QVERIFY(swatch_yarn_shown(w));

@@ -574,10 +574,11 @@ TEST(YarnSettings, WrittenAsProjectLinesTheyReadBackTheSame) {
   s.relax.active_set.enabled = true;
   s.relax.sampling.spacing = 2.2;
   s.relax.jam_steps = 0;
+  s.relax.clipped_scale = true;
   s.local.rings = 2;
   s.local.halo = 3;
   const auto lines = yarn_setting_lines(s);
-  EXPECT_EQ(lines.size(), 10u);
+  EXPECT_EQ(lines.size(), 11u);
   const auto back = read_yarn_settings(lines, "p.skein");
   EXPECT_EQ(back.relax.method, s.relax.method);
   EXPECT_EQ(back.relax.tolerance, s.relax.tolerance);
@@ -587,6 +588,7 @@ TEST(YarnSettings, WrittenAsProjectLinesTheyReadBackTheSame) {
   EXPECT_EQ(back.relax.active_set.enabled, s.relax.active_set.enabled);
   EXPECT_EQ(back.relax.sampling.spacing, s.relax.sampling.spacing);
   EXPECT_EQ(back.relax.jam_steps, s.relax.jam_steps);
+  EXPECT_EQ(back.relax.clipped_scale, s.relax.clipped_scale);
   EXPECT_EQ(back.local.rings, s.local.rings);
   EXPECT_EQ(back.local.halo, s.local.halo);
   // A project without settings: the defaults.
@@ -604,6 +606,7 @@ TEST(YarnSettings, BadLinesNameTheFileTheLineAndTheRule) {
       {{"yarn.method", "verlet", 7}, "verlet"},
       {{"yarn.take_up", "20", 7}, "between 0.1 and 10"},
       {{"yarn.jam_steps", "-3", 7}, "jam_steps must be 0 (never) or more"},
+      {{"yarn.stop_scale", "median", 7}, "'median' is neither first nor clipped"},
   };
   for (const auto& [line, rule] : cases) {
     const std::string msg = skein::testing::error_of([&] { read_yarn_settings({line}, "p.skein"); });
