@@ -199,8 +199,6 @@ void StandInOptions::validate() const {
   if (min_faces < 1) throw Error("", "stand-in", "the fewest faces of a repeat must be at least 1, found " + std::to_string(min_faces));
   if (max_period < 1 || max_period > 16) throw Error("", "stand-in", "the longest repeat must be 1 to 16 stitches, found " + std::to_string(max_period));
   if (reach < 0) throw Error("", "stand-in", "the rings beyond a region must be 0 or more, found " + std::to_string(reach));
-  for (const auto& pattern : patterns)
-    if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "stand-in", "pattern " + pattern.name + " is woven: a stitch mesh holds no repeat of it");
 }
 
 Eigen::Matrix3Xd stand_in_preview(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const mesh::StitchLibrary& library,
