@@ -289,6 +289,22 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
             {"yarn", yarn_json(yarn_out_curves)},
             {"history", {{"step", steps}, {"residual", residuals}, {"energy", energies}}}};
   j["stop_scale"] = options.clipped_scale ? "clipped" : "first";
+  j["stop_rule"] = relax::to_string(options.stop_rule);
+  j["force_residual"] = report.force_residual;
+  if (report.free_period) {
+    // The relaxed repeat as a knitter reads it: its size and the gauge, per 10 cm (Leaf §7 set the period by hand).
+    const Eigen::Matrix<double, 3, 2> period = report.period * run.scale;
+    const double lx = period(0, 0), ly = period(1, 1);
+    json free = {{"period_x_mm", {period(0, 0), period(1, 0), period(2, 0)}}, {"period_y_mm", {period(0, 1), period(1, 1), period(2, 1)}},
+                 {"repeat_mm", {lx, ly}}, {"shear", period(0, 1) / ly},
+                 {"stress_over_bending", {report.period_stress.x(), report.period_stress.y(), report.period_stress.z()}}};
+    if (run.repeat[0] > 0 && run.repeat[1] > 0)
+      free["gauge_per_10cm"] = {{"stitches", 100.0 * run.repeat[0] / lx}, {"rows", 100.0 * run.repeat[1] / ly}};
+    j["free_period"] = free;
+    spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,
+                 run.repeat[0] > 0 ? fmt::format(": {:.1f} stitches and {:.1f} rows per 10 cm", 100.0 * run.repeat[0] / lx, 100.0 * run.repeat[1] / ly)
+                                   : std::string());
+  }
   if (options.active_set.enabled) {
     const auto& a = report.active;
     const double all = static_cast<double>(report.steps) * system.num_points();

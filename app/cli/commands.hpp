@@ -1,6 +1,7 @@
 #pragma once
 // What the skein subcommands and jobs share: inputs, reports, pictures, progress and the yarn run.
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -115,6 +116,8 @@ struct YarnRunOutputs {
   int panel = 900;              ///< picture: pixels per view
   render::YarnColor color = render::YarnColor::StitchType;
   double scale = 1;             ///< the relaxed yarn is written scaled by this (1/gamma, Leaf §6.2)
+  /// A periodic patch's repeat in stitches (wales x courses; wovens: warps x wefts), for the gauge of a free period.
+  std::array<int, 2> repeat = {0, 0};
 };
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state

@@ -169,6 +169,15 @@ int main(int argc, char** argv) {
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
   ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  std::string ry_stop_rule = "leaf";
+  ry->add_option("--stop-rule", ry_stop_rule, "leaf (eq. 5: --tolerance and --stall, relative to the first step) or force (the largest force per yarn "
+                                              "length at most --force-tolerance × B/r³, and the energy fell less than --energy-stall of itself over the "
+                                              "last --stall-window steps)")
+      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
+  ry->add_option("--force-tolerance", ry_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
+  ry->add_option("--stall-window", ry_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
+  ry->add_option("--energy-stall", ry_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
+      ->capture_default_str();
   std::string ry_stop_scale = "first";
   ry->add_option("--stop-scale", ry_stop_scale,
                  "Leaf eq. 5's |∇E_0|: first (whole) or clipped (each point's force clipped to the largest of all but the largest 0.1 %, "
@@ -272,6 +281,16 @@ int main(int argc, char** argv) {
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
   pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
+  std::string pat_stop_rule = "leaf";
+  pat->add_option("--stop-rule", pat_stop_rule, "with --relax: force (the largest force per yarn length against the yarn's bending force B/r³, and the energy "
+                                                "stalled) or leaf (eq. 5, relative to the first step), as relax-yarn's")
+      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
+  pat->add_option("--force-tolerance", pat_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
+  pat->add_flag("--free-period", pat_options.period.free,
+                "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report");
+  pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
+  bool pat_no_shear = false;
+  pat->add_flag("--no-shear", pat_no_shear, "with --free-period: the repeat keeps its right angle (only its two lengths relax)");
   pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
       ->capture_default_str();
   std::string pat_views = "flat";
@@ -569,6 +588,7 @@ int main(int argc, char** argv) {
       }
       ry_options.method = relax::parse_yarn_method(ry_method);
       ry_options.clipped_scale = ry_stop_scale == "clipped";
+      ry_options.stop_rule = relax::parse_stop_rule(ry_stop_rule);
       ry_options.guard.enabled = !ry_no_guard;
       ry_options.guard.safe_bounds = !ry_no_bounds;
       ry_options.audit = !ry_no_audit;
@@ -744,6 +764,10 @@ int main(int argc, char** argv) {
       spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
+        pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
+        pat_options.period.shear = !pat_no_shear;
+        if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
+        if (pat_options.period.free && !pat_period.empty()) throw Error("", "--free-period", "relaxes the period: leave out --period");
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
         pat_extra["gamma"] = pat_gamma;
@@ -763,13 +787,14 @@ int main(int argc, char** argv) {
         auto state = relax::initial_state(system, pat_options);
         const json report = relax_and_write(yarn, system, targets, pat_options, state,
                                             {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views,
-                                             !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma});
+                                             !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
+                                             {pattern.width(), pattern.height()}});
         if (preview && report.at("stopped_by") != "interrupted") {
           // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
           const auto tiled = pattern.format == mesh::PatternFormat::Woven
                                  ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
                                  : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
-          const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale);
+          const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
           out.radius /= pat_gamma;
           if (!pat_preview.empty()) write_yarn(out, pat_preview);

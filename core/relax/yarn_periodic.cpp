@@ -4,6 +4,9 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
 #include "common/error.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -21,6 +24,8 @@ int virtual_rings(const mesh::Pattern& pattern) {
 void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& repeat, int rings) {
   const int centre = rings + 1;
   const int n = static_cast<int>(patch.yarn.points.size());
+  patch.map.period_x = patch.period_x;
+  patch.map.period_y = patch.period_y;
   patch.ring.assign(n, patch.tiles);
   std::map<PositionKey, int> real;
   for (int p = 0; p < n; ++p) {
@@ -38,6 +43,7 @@ void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& re
         patch.map.virtual_points.push_back(p);
         patch.map.real_points.push_back(it->second);
         patch.map.offsets.push_back(offset);
+        patch.map.cells.emplace_back(a - centre, b - centre);
         continue;
       }
     }
@@ -64,7 +70,10 @@ void drop_frozen(PeriodicPatch& patch) {
     map.virtual_points.push_back(v);
     map.real_points.push_back(r);
     map.offsets.push_back(patch.map.offsets[i]);
+    map.cells.push_back(patch.map.cells[i]);
   }
+  map.period_x = patch.map.period_x;
+  map.period_y = patch.map.period_y;
   patch.yarn = std::move(out);
   patch.map = std::move(map);
   patch.ring = std::move(ring);
@@ -91,6 +100,20 @@ void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double 
   for (auto& d : map.offsets) {
     d.x() *= sx;
     d.y() *= sy;
+  }
+  for (Eigen::Vector3d* d : {&map.period_x, &map.period_y}) {
+    d->x() *= sx;
+    d->y() *= sy;
+  }
+}
+
+void set_period(PeriodicMap& map, Eigen::Matrix3Xd& points, const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y) {
+  if (map.cells.size() != map.virtual_points.size()) throw Error("", "period", "the periodic map does not say each virtual point's repeat");
+  map.period_x = period_x;
+  map.period_y = period_y;
+  for (size_t i = 0; i < map.virtual_points.size(); ++i) {
+    map.offsets[i] = map.cells[i].x() * period_x + map.cells[i].y() * period_y;
+    points.col(map.virtual_points[i]) = points.col(map.real_points[i]) + map.offsets[i];
   }
 }
 
@@ -156,7 +179,7 @@ PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing,
 }
 
 TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3Xd& relaxed, const mesh::YarnCurves& tiled,
-                                const Eigen::Vector2d& period_scale) {
+                                const Eigen::Vector2d& period_scale, const Eigen::Matrix<double, 3, 2>* period) {
   const int n = static_cast<int>(tiled.points.size());
   if (relaxed.cols() != static_cast<Eigen::Index>(patch.ring.size()))
     throw Error("", "tiled preview", "the relaxed state has " + std::to_string(relaxed.cols()) + " points, the patch " + std::to_string(patch.ring.size()));
@@ -164,7 +187,16 @@ TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3
   for (int p = 0; p < static_cast<int>(patch.ring.size()); ++p)
     if (patch.ring[p] == 0) real.emplace(position_key(patch.yarn.points[p]), p);
   const int centre = (patch.tiles - 1) / 2;
-  const auto scaled = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x.x() * period_scale.x(), x.y() * period_scale.y(), x.z()); };
+  // The emitted tiling mapped onto the relaxed lattice: by the period scales, or by the free period's own
+  // lattice (the linear map that takes the emitted period to the relaxed one).
+  Eigen::Matrix3d lattice = Eigen::Vector3d(period_scale.x(), period_scale.y(), 1).asDiagonal();
+  if (period) {
+    Eigen::Matrix3d from, to;
+    from << patch.period_x, patch.period_y, Eigen::Vector3d::UnitZ();
+    to << period->col(0), period->col(1), Eigen::Vector3d::UnitZ();
+    lattice = to * from.inverse();
+  }
+  const auto scaled = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(lattice * x); };
   TiledPreview out;
   out.points.resize(3, n);
   std::vector<char> placed(n, 0);

@@ -14,8 +14,10 @@ namespace skein::relax {
 struct PeriodicMap {
   std::vector<int> virtual_points;        ///< iV
   std::vector<int> real_points;           ///< iR, per virtual point
-  std::vector<Eigen::Vector3d> offsets;   ///< d, per virtual point [mm]
+  std::vector<Eigen::Vector3d> offsets;   ///< d, per virtual point [mm]: a period_x + b period_y of its cell
+  std::vector<Eigen::Vector2i> cells;     ///< per virtual point: its repeat (a, b) from the real one
   std::vector<int> frozen;                ///< points held where they are (the outermost copies)
+  Eigen::Vector3d period_x = Eigen::Vector3d::Zero(), period_y = Eigen::Vector3d::Zero();  ///< the repeat's offsets [mm]
   bool empty() const { return virtual_points.empty() && frozen.empty(); }
 };
 
@@ -47,6 +49,10 @@ PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing,
 /// Take the yarn's rest lengths before (make_yarn_system on the unscaled yarn), so the yarn keeps its length.
 void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double sy);
 
+/// Sets the repeat's period: every virtual point is placed at its real point plus its cell's new offset
+/// (a period_x + b period_y); real points stay. The variable-cell relaxation's move (yarn_cell.hpp).
+void set_period(PeriodicMap& map, Eigen::Matrix3Xd& points, const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y);
+
 /// Zeroes the gradient of virtual and frozen points: they are not degrees of freedom, so neither the
 /// integrator nor the convergence test (Leaf eq. 5) may count them.
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
@@ -56,13 +62,14 @@ void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
 /// the relaxed real point it copies lies plus its repeat's offset. Points are matched where they were emitted
 /// (as the patch matches its virtual points); the tiling's border stitches (cast-on, bind-off, turns), which
 /// no real point copies, move as the nearest matched point along their yarn. `period_scale`: the repeat's
-/// period scale along x and y (scale_period), 1 x 1 when none. Returns the positions [mm].
+/// period scale along x and y (scale_period), 1 x 1 when none; `period`, when given, the relaxed repeat's period
+/// (px, py) of a free-period run, which replaces the scaled one (the tiling is sheared with it). Returns the positions [mm].
 struct TiledPreview {
   Eigen::Matrix3Xd points;
   int matched = 0;  ///< points placed from a real point (the rest follow their yarn)
 };
 TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3Xd& relaxed, const mesh::YarnCurves& tiled,
-                                const Eigen::Vector2d& period_scale = {1, 1});
+                                const Eigen::Vector2d& period_scale = {1, 1}, const Eigen::Matrix<double, 3, 2>* period = nullptr);
 
 /// The periodic patch's relaxed real points against the matching points of the relaxed centre repeat of an
 /// n × n tiling of the same pattern (its stitch mesh from mesh::pattern_stitch_mesh(pattern, n, n), emitted

@@ -110,6 +110,12 @@ void YarnRelaxOptions::validate() const {
   check_param(fire_max_step, "fire_max_step", false);
   check_param(tolerance, "tolerance");
   check_param(stall, "stall");
+  check_param(force_tolerance, "force_tolerance", false);
+  check_param(energy_stall, "energy_stall");
+  if (stall_window < 1) throw Error("", "yarn relaxation", "the energy's stall window must be at least 1 step, found " + std::to_string(stall_window));
+  period.validate();
+  if (period.free && (checkpoint_every > 0 || checkpoint_minutes > 0))
+    throw Error("", "yarn relaxation", "a free period is not checkpointed: relax a periodic patch without checkpoints");
   check_param(max_seconds, "max_seconds");
   check_param(checkpoint_minutes, "checkpoint_minutes");
   check_param(jam_drop, "jam_drop");
@@ -143,6 +149,23 @@ YarnMethod parse_yarn_method(const std::string& name) {
 }
 
 std::string to_string(YarnMethod method) { return method == YarnMethod::Euler ? "euler" : "fire"; }
+
+StopRule parse_stop_rule(const std::string& name) {
+  if (name == "force") return StopRule::Force;
+  if (name == "leaf") return StopRule::Leaf;
+  throw Error("", "--stop-rule", "expected force or leaf, found '" + name + "'");
+}
+
+std::string to_string(StopRule rule) { return rule == StopRule::Force ? "force" : "leaf"; }
+
+double bending_force_scale(const YarnParams& params, double radius) { return params.k_bend / (radius * radius * radius); }
+
+double largest_force_per_length(const YarnSystem& system, const Eigen::Matrix3Xd& gradient) {
+  double largest = 0;
+#pragma omp parallel for reduction(max : largest) schedule(static)
+  for (int p = 0; p < system.num_points(); ++p) largest = std::max(largest, gradient.col(p).norm() / system.mass[p]);
+  return largest;
+}
 
 Backend parse_backend(const std::string& name) {
   if (name == "auto") return Backend::Auto;
@@ -264,8 +287,10 @@ class CpuYarnRelaxer final : public YarnRelaxer {
 public:
   CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
       : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
-        m_changed(system.num_points(), 1) {
+        m_changed(system.num_points(), 1), m_periodic(targets.periodic) {
     m_options.validate();
+    if (m_options.period.free && (m_periodic.virtual_points.empty() || m_periodic.cells.size() != m_periodic.virtual_points.size()))
+      throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");
     std::vector<int> groups(system.num_points(), -1);
     for (int l = 0; l < static_cast<int>(targets.boundary_loops.size()); ++l)
       for (int p : targets.boundary_loops[l]) groups[p] = l;
@@ -301,17 +326,31 @@ public:
     if (m_active) m_active->wake_all();
 
     YarnRelaxReport report;
+    const double force_scale = bending_force_scale(m_options.params, r);
+    std::optional<PeriodRelaxer> cell;
+    if (m_options.period.free) {
+      if (state.period.isZero()) state.period << m_periodic.period_x, m_periodic.period_y;
+      set_period(m_periodic, state.points, state.period.col(0), state.period.col(1));
+      cell.emplace(m_options.period, state.period.col(0), state.period.col(1));
+      report.free_period = true;
+    }
+    std::vector<double> energies;  // the force rule's window
+    Eigen::Matrix<double, 3, 2> good_period = state.period;
     Eigen::Matrix3Xd grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
-    double energy = 0, residual = 0;
+    double energy = 0, residual = 0, force = 0;
     long failures = 0;
     for (;;) {
       energy = forces(state, grad, damping);
-      if (!m_targets.periodic.empty()) constrain_gradient(m_targets.periodic, grad);
+      if (!m_periodic.empty()) constrain_gradient(m_periodic, grad);
       residual = std::sqrt(ordered_sum(grad.cols(), [&](long p) { return grad.col(p).squaredNorm(); }));
       if (!std::isfinite(energy) || !std::isfinite(residual) || !state.points.allFinite()) {
         // Blow-up: back to the last good state with half the step (Leaf §3.1's step restriction failed).
         state.points = good_points;
         state.velocities = good_velocities;
+        if (cell) {
+          state.period = good_period;
+          set_period(m_periodic, state.points, state.period.col(0), state.period.col(1));
+        }
         state.time_step *= 0.5;
         ++state.rollbacks;
         m_forces.invalidate();
@@ -327,6 +366,7 @@ public:
       failures = 0;
       good_points = state.points;
       good_velocities = state.velocities;
+      good_period = state.period;
       if (state.residual0 == 0) {  // a state may bring its own scale (local relaxation)
         state.residual0 = m_options.clipped_scale ? clipped_norm(grad) : residual;
         report.first_residual_peak = peak_share(grad);
@@ -343,14 +383,25 @@ public:
         }
       }
       const double relative = residual / state.residual0;
-      bool converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+      force = largest_force_per_length(m_system, grad) / force_scale;
+      energies.push_back(energy);
+      const auto stopped = [&] {
+        if (m_options.stop_rule == StopRule::Leaf)
+          return model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+        const long w = m_options.stall_window, i = static_cast<long>(energies.size()) - 1;
+        return i >= w && force <= m_options.force_tolerance && energies[i - w] - energy <= m_options.energy_stall * std::abs(energy);
+      };
+      const auto cell_converged = [&] { return !cell || cell->converged(m_options.period.tolerance * force_scale); };
+      bool converged = stopped() && cell_converged();
       if (converged && m_active) {
         // The honest final check: the whole system's forces from scratch, none of them kept.
         m_forces.invalidate();
         energy = forces(state, grad, damping);
-        if (!m_targets.periodic.empty()) constrain_gradient(m_targets.periodic, grad);
+        if (!m_periodic.empty()) constrain_gradient(m_periodic, grad);
         residual = std::sqrt(ordered_sum(grad.cols(), [&](long p) { return grad.col(p).squaredNorm(); }));
-        converged = model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
+        force = largest_force_per_length(m_system, grad) / force_scale;
+        energies.back() = energy;
+        converged = stopped() && cell_converged();
         if (!converged) {
           spdlog::warn("step {}: the active set's forces disagree with a fresh evaluation; every point wakes", state.step);
           m_active->wake_all();
@@ -385,13 +436,14 @@ public:
                                   : grad.cols();
       const double dt = propose(state, grad, damping, limit, delta);
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
-      if (!m_targets.periodic.empty()) apply_periodic(m_targets.periodic, delta, state.velocities);
+      if (!m_periodic.empty()) apply_periodic(m_periodic, delta, state.velocities);
       const double scale = m_guard->accept(state.points, delta);
       const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + delta).size()) : 0;
       state.pull_through_events += crossings;
       state.points += delta;
       // The velocity that matches the move the guard let through.
       if (scale < 1) state.velocities = delta / dt;
+      if (cell) state.pull_through_events += period_step(*cell, state, limit / 1.25, delta);
       ++state.step;
       mark_changed(state, delta);
       if (m_active) m_active->moved(delta, m_pairs);
@@ -413,6 +465,8 @@ public:
         log.held_points = state.guard.held_points - before.held_points;
         log.crossings = crossings;
         log.awake = awake;
+        log.force = force;
+        if (cell) log.period_x = state.period(0, 0), log.period_y = state.period(1, 1);
         on_step(log);
       }
       const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;
@@ -429,6 +483,11 @@ public:
     report.steps = state.step;
     report.wall_seconds = seconds_since(started);
     report.residual = state.residual0 > 0 ? residual / state.residual0 : 0;
+    report.force_residual = force;
+    if (cell) {
+      report.period = state.period;
+      report.period_stress = cell->stress() / force_scale;
+    }
     report.energy = energy;
     report.contacts = m_pairs.pairs();
     report.guard = m_guard->counters();
@@ -446,6 +505,36 @@ private:
     m_guard->reset(m_pairs);
     m_forces.set_pairs(m_pairs);
     m_moved_since_rebuild = 0;
+  }
+
+  /// A free period's step (after the control points' one): the repeat's stress at the new positions, a move of
+  /// the period that carries every virtual point with its cell, passed through the guard on its own and taken
+  /// only whole (a virtual point must stay its real point plus its offset). The move is added to `delta`;
+  /// returns the auditor's crossings in it.
+  long period_step(PeriodRelaxer& cell, YarnState& state, double largest_move, Eigen::Matrix3Xd& delta) {
+    const auto stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
+    const Eigen::Matrix<double, 3, 2> next = cell.propose(stress, m_periodic, largest_move), change = next - state.period;
+    if (change.isZero()) return 0;
+    Eigen::Matrix3Xd move = Eigen::Matrix3Xd::Zero(3, m_system.num_points());
+    for (size_t i = 0; i < m_periodic.virtual_points.size(); ++i)
+      move.col(m_periodic.virtual_points[i]) = change * m_periodic.cells[i].cast<double>();
+    Eigen::Matrix3Xd guarded = move;
+    GuardCounters counters = m_guard->counters();
+    m_guard->accept(state.points, guarded);
+    const long held = m_guard->counters().held_points - counters.held_points;
+    counters = m_guard->counters();
+    --counters.steps;  // one step, two passes
+    m_guard->set_counters(counters);
+    if (held > 0 || !(guarded - move).isZero()) {
+      cell.reject();
+      return 0;
+    }
+    const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
+    set_period(m_periodic, state.points, next.col(0), next.col(1));
+    state.period = next;
+    cell.accept(next);
+    delta += move;
+    return crossings;
   }
 
   /// Which points the next evaluation must see as changed: those that moved, and for Euler's damping those
@@ -542,6 +631,7 @@ private:
   Eigen::Matrix3Xd m_velocities;  ///< Euler: the velocities of the last evaluation
   std::optional<ActiveSet> m_active;
   double m_moved_since_rebuild = 0;
+  PeriodicMap m_periodic;  ///< the periodic patch's map, its offsets those of the current period
 };
 
 }  // namespace

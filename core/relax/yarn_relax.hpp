@@ -9,6 +9,7 @@
 
 #include "relax/pull_through_guard.hpp"
 #include "relax/yarn_active.hpp"
+#include "relax/yarn_cell.hpp"
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_segment.hpp"
 #include "relax/yarn_shape.hpp"
@@ -76,6 +77,25 @@ private:
   long m_computed = 0;
 };
 
+/// When a run has converged.
+enum class StopRule {
+  /// The honest rule (issue 24): the largest force per unit yarn length at most `force_tolerance` times the yarn's
+  /// own bending force per length, B / r³ (B = k_bend, the bending stiffness: the force per length that holds the
+  /// yarn bent to a radius of r), and the energy stalled: it fell by less than `energy_stall` of itself over the
+  /// last `stall_window` steps. Absolute: the first step's forces do not set it.
+  Force,
+  Leaf,  ///< Leaf 2018 eq. 5: the residual against the first step's (`tolerance`, `stall`)
+};
+StopRule parse_stop_rule(const std::string& name);  ///< "force" or "leaf"; throws skein::Error otherwise
+std::string to_string(StopRule rule);
+
+/// The yarn's bending force per length B / r³ [energy / mm²]: the scale of the force stop rule and of a free
+/// period's stress.
+double bending_force_scale(const YarnParams& params, double radius);
+
+/// The largest force per unit yarn length of `gradient` (per point: |∇E_p| over its share of the rest length).
+double largest_force_per_length(const YarnSystem& system, const Eigen::Matrix3Xd& gradient);
+
 enum class YarnMethod {
   Euler,  ///< semi-implicit Euler with the per-sample step bound of Leaf eq. 2 (Leaf Algorithm 1)
   Fire,   ///< FIRE (Bitzek et al. 2006), a quasi-static descent with inertia; every point clamped to ε r
@@ -96,8 +116,13 @@ struct YarnRelaxOptions {
   double contact_margin = 1.0;  ///< [r]: pairs this far beyond touching are cached; rebuilt after half of it is used
   double time_step = 0;         ///< [s] Euler's step and FIRE's first step; 0: 0.002 for Euler, 0.02 for FIRE
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
+  StopRule stop_rule = StopRule::Leaf;
+  double force_tolerance = 0.02;  ///< StopRule::Force: the largest force per length / (B / r³)
+  long stall_window = 50;       ///< StopRule::Force: steps over which the energy must have stalled
+  double energy_stall = 1e-4;   ///< StopRule::Force: the energy's fall over the window, a share of itself
   double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
   double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
+  PeriodOptions period;         ///< a periodic patch's free period (variable-cell relaxation; CPU)
   /// Leaf eq. 5's scale |∇E_0| with every point's force clipped to the largest of all but the largest 0.1 %, so
   /// that a few kinks of the emitted yarn do not set it (YarnRelaxReport::first_residual_peak); CPU only.
   bool clipped_scale = false;
@@ -129,6 +154,8 @@ struct YarnState {
   double residual0 = 0, residual_prev = 0;  ///< |∇E| at the first step (or the scale set before it) and the previous step
   GuardCounters guard;
   long rollbacks = 0, contact_rebuilds = 0, pull_through_events = 0;
+  /// With a free period: the repeat's period (period_x, period_y) [mm]; zero until a run sets it (the map's own).
+  Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
 };
 YarnState initial_state(const YarnSystem& system, const YarnRelaxOptions& options);
 
@@ -139,6 +166,8 @@ struct YarnStepLog {
   long contacts = 0, guard_hits = 0, held_points = 0;
   long crossings = 0;  ///< centreline crossings the auditor found in this step
   long awake = 0;      ///< control points integrated in this step (all of them without the active set)
+  double force = 0;    ///< the largest force per unit yarn length over B / r³ (StopRule::Force)
+  double period_x = 0, period_y = 0;  ///< with a free period: the repeat's L_x and L_y [mm]
 };
 
 /// Outcome of a run; not converging is a result, not an exception.
@@ -147,6 +176,12 @@ struct YarnRelaxReport {
   std::string stopped_by;     ///< "converged", "step cap", "time cap", "interrupted", "jammed", "diverged"
   long steps = 0;
   double wall_seconds = 0, residual = 0, energy = 0;
+  double force_residual = 0;  ///< the largest force per unit yarn length at the end, over B / r³ (StopRule::Force)
+  /// With a free period: the relaxed period (period_x, period_y) [mm] and the free components' stresses at the
+  /// end (dE/dL_x / L_y, dE/dL_y / L_x, dE/ds / L_x) over B / r³.
+  bool free_period = false;
+  Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
+  Eigen::Vector3d period_stress = Eigen::Vector3d::Zero();
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run

@@ -1,0 +1,70 @@
+#pragma once
+// Variable-cell relaxation of a periodic patch (issue 24; Leaf 2018 §7 fixes the period by hand): the repeat's
+// period is a degree of freedom beside the control points. The derivative of one repeat's energy with respect
+// to its period is the patch's mean stress; relaxing it to zero finds the stress-free repeat, so a rib narrows
+// and a garter shortens by themselves and a pattern reports its own gauge.
+#include <Eigen/Core>
+
+#include "relax/yarn_contacts.hpp"
+#include "relax/yarn_periodic.hpp"
+#include "relax/yarn_system.hpp"
+
+namespace skein::relax {
+
+struct YarnParams;
+
+/// One repeat's energy and its derivative with respect to the period at fixed real points (virtual point v
+/// sits at its real point + a_v period_x + b_v period_y). The repeat's energy is the share of the real
+/// segments (those that start at a real point: one of every periodic copy): their intrinsic terms and half of
+/// each contact they take part in, as the relaxer counts it. A contact between samples at lattice coordinates
+/// c_a and c_b (their basis-weighted cells) adds ½ ∂C/∂y_a (c_a − c_b)ᵀ: only differences of cells count,
+/// so the result does not depend on which copy is called real.
+struct CellStress {
+  double energy = 0;                                             ///< one repeat's energy
+  Eigen::Matrix<double, 3, 2> gradient = Eigen::Matrix<double, 3, 2>::Zero();  ///< dE / d[period_x period_y]
+  double area = 0;                                               ///< |period_x × period_y| [mm²]
+  /// The mean stress σ = (1/A) Σ_k dE/dP_k P_kᵀ over the two periods (the energy's derivative per unit strain
+  /// of the repeat, per area), in the plane of the fabric: xx across the course, yy along the wale.
+  Eigen::Matrix2d mean_stress(const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y) const;
+};
+
+/// The stress at `points` with contact between the given pairs; the map must say each virtual point's cell.
+CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,
+                       const Eigen::Matrix3Xd& points);
+
+/// What a free period may do (relax-yarn --free-period, skein pattern --relax --free-period).
+struct PeriodOptions {
+  bool free = false;        ///< relax the period too (periodic patches only; CPU)
+  bool shear = true;        ///< with free: the repeat may shear (period_y's x component), as a diagonal pattern does
+  /// Converged when every free component's stress (dE/dL per length of the cut it acts across) is at most
+  /// this times the yarn's bending force per length B / r³ (the stop rule's scale, StopRule).
+  double tolerance = 1e-3;
+  void validate() const;    ///< throws skein::Error for a tolerance that is not positive
+};
+
+/// The period's degrees of freedom: L_x = period_x.x, L_y = period_y.y and, with shear, s = period_y.x (period_x
+/// stays on the x axis and both in the plane). Each step moves them by resilient propagation (Rprop, Riedmiller and
+/// Braun 1993: per component a step that grows while the stress keeps its sign and halves when it flips), which
+/// needs no mass for the cell and copes with the noise of the control points relaxing at the same time; no move
+/// takes a virtual point further than `largest_move`.
+class PeriodRelaxer {
+public:
+  PeriodRelaxer(const PeriodOptions& options, const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y);
+  /// The next period from the stress (the step's size limited so that no virtual point of `map` moves more than
+  /// `largest_move` [mm]); it is only proposed: accept() or reject() it.
+  Eigen::Matrix<double, 3, 2> propose(const CellStress& stress, const PeriodicMap& map, double largest_move);
+  void accept(const Eigen::Matrix<double, 3, 2>& period) { m_period = period; }
+  void reject();  ///< the guard would have changed the move: every step halves
+  const Eigen::Matrix<double, 3, 2>& period() const { return m_period; }
+  /// The free components' stresses (dE/dL_x / L_y, dE/dL_y / L_x, dE/ds / L_x) from the last propose.
+  const Eigen::Vector3d& stress() const { return m_stress; }
+  /// Every free component's stress at most `limit` [energy / mm²].
+  bool converged(double limit) const;
+
+private:
+  PeriodOptions m_options;
+  Eigen::Matrix<double, 3, 2> m_period;
+  Eigen::Vector3d m_step, m_last = Eigen::Vector3d::Zero(), m_stress = Eigen::Vector3d::Constant(INFINITY);
+};
+
+}  // namespace skein::relax
