@@ -226,7 +226,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   if (!run.log.empty()) {
     // Going on from a checkpoint, the log keeps its rows up to the checkpoint's step (a killed run may have
     // logged further) and goes on from there.
-    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings,seconds,awake\n";
+    std::string kept = "step,energy,residual,time_step,moved_mm,contacts,guard_hits,held_points,crossings,seconds,awake,force,period_x,period_y\n";
     if (state.step > 0) {
       std::ifstream old(run.log);
       std::string line;
@@ -245,8 +245,8 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
     if (log)
       *log << s.step << ',' << s.energy << ',' << s.residual << ',' << s.time_step << ',' << s.moved << ',' << s.contacts << ','
-           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds() << ',' << s.awake
-           << std::endl;  // flushed: a long job's log can be followed
+           << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds() << ',' << s.awake << ','
+           << s.force << ',' << s.period_x << ',' << s.period_y << std::endl;  // flushed: a long job's log can be followed
     history.push_back({static_cast<double>(s.step), s.residual, s.energy});
     const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
     const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
@@ -297,9 +297,22 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
     const double lx = period(0, 0), ly = period(1, 1);
     json free = {{"period_x_mm", {period(0, 0), period(1, 0), period(2, 0)}}, {"period_y_mm", {period(0, 1), period(1, 1), period(2, 1)}},
                  {"repeat_mm", {lx, ly}}, {"shear", period(0, 1) / ly},
-                 {"stress_over_bending", {report.period_stress.x(), report.period_stress.y(), report.period_stress.z()}}};
-    if (run.repeat[0] > 0 && run.repeat[1] > 0)
+                 {"stress_over_bending", {report.period_stress.x(), report.period_stress.y(), report.period_stress.z()}},
+                 {"repeat_energy", report.repeat_energy}};
+    if (run.repeat[0] > 0 && run.repeat[1] > 0) {
       free["gauge_per_10cm"] = {{"stitches", 100.0 * run.repeat[0] / lx}, {"rows", 100.0 * run.repeat[1] / ly}};
+      // The yarn of one repeat: the rest lengths of the segments that start at a real point, per stitch the loop
+      // length l; Munden's dimensional constants Kc = courses per length × l and Kw = wales per length × l.
+      std::vector<char> copy(system.num_points(), 0);
+      for (int v : targets.periodic.virtual_points) copy[v] = 1;
+      double yarn = 0;
+      for (int s = 0; s < system.num_segments(); ++s)
+        if (!copy[system.segment_points[s][1]]) yarn += system.rest_length[s];
+      const double loop = yarn * run.scale / (run.repeat[0] * run.repeat[1]);
+      free["loop_length_mm"] = loop;
+      free["Kc"] = run.repeat[1] / ly * loop;
+      free["Kw"] = run.repeat[0] / lx * loop;
+    }
     j["free_period"] = free;
     spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,
                  run.repeat[0] > 0 ? fmt::format(": {:.1f} stitches and {:.1f} rows per 10 cm", 100.0 * run.repeat[0] / lx, 100.0 * run.repeat[1] / ly)

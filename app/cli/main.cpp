@@ -289,8 +289,9 @@ int main(int argc, char** argv) {
   pat->add_flag("--free-period", pat_options.period.free,
                 "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report");
   pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
-  bool pat_no_shear = false;
-  pat->add_flag("--no-shear", pat_no_shear, "with --free-period: the repeat keeps its right angle (only its two lengths relax)");
+  pat->add_option("--k-bend", pat_options.params.k_bend, "with --relax: bending stiffness (Leaf eq. 7), as relax-yarn's")->capture_default_str();
+  pat->add_option("--k-contact", pat_options.params.k_contact, "with --relax: contact stiffness (Leaf eq. 9), as relax-yarn's")->capture_default_str();
+  pat->add_flag("--shear", pat_options.period.shear, "with --free-period: the repeat may shear too (a diagonal pattern); without it only its two lengths relax");
   pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
       ->capture_default_str();
   std::string pat_views = "flat";
@@ -765,7 +766,6 @@ int main(int argc, char** argv) {
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
         pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
-        pat_options.period.shear = !pat_no_shear;
         if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
         if (pat_options.period.free && !pat_period.empty()) throw Error("", "--free-period", "relaxes the period: leave out --period");
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);

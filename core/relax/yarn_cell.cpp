@@ -118,6 +118,7 @@ Eigen::Matrix<double, 3, 2> PeriodRelaxer::propose(const CellStress& stress, con
   // dE/dL_x, dE/dL_y, dE/ds; as stresses, per length of the cut each acts across.
   const Eigen::Vector3d g(stress.gradient(0, 0), stress.gradient(1, 1), m_options.shear ? stress.gradient(0, 1) : 0.0);
   m_stress = Eigen::Vector3d(g.x() / ly, g.y() / lx, g.z() / lx);
+  m_energy = stress.energy;
   Eigen::Vector3d move = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
     const double product = g[i] * m_last[i];

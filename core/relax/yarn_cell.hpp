@@ -35,7 +35,10 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
 /// What a free period may do (relax-yarn --free-period, skein pattern --relax --free-period).
 struct PeriodOptions {
   bool free = false;        ///< relax the period too (periodic patches only; CPU)
-  bool shear = true;        ///< with free: the repeat may shear (period_y's x component), as a diagonal pattern does
+  /// With free: the repeat may shear too (period_y's x component), as a diagonal pattern does. Off by default: the
+  /// model's stockinette lowers its energy by under 1 % by shearing a third of a stitch (a soft mode that friction,
+  /// which the model lacks, holds in real fabric).
+  bool shear = false;
   /// Converged when every free component's stress (dE/dL per length of the cut it acts across) is at most
   /// this times the yarn's bending force per length B / r³ (the stop rule's scale, StopRule).
   double tolerance = 1e-3;
@@ -58,6 +61,7 @@ public:
   const Eigen::Matrix<double, 3, 2>& period() const { return m_period; }
   /// The free components' stresses (dE/dL_x / L_y, dE/dL_y / L_x, dE/ds / L_x) from the last propose.
   const Eigen::Vector3d& stress() const { return m_stress; }
+  double energy() const { return m_energy; }  ///< one repeat's energy at the last propose
   /// Every free component's stress at most `limit` [energy / mm²].
   bool converged(double limit) const;
 
@@ -65,6 +69,7 @@ private:
   PeriodOptions m_options;
   Eigen::Matrix<double, 3, 2> m_period;
   Eigen::Vector3d m_step, m_last = Eigen::Vector3d::Zero(), m_stress = Eigen::Vector3d::Constant(INFINITY);
+  double m_energy = 0;
 };
 
 }  // namespace skein::relax

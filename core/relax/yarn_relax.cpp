@@ -487,6 +487,7 @@ public:
     if (cell) {
       report.period = state.period;
       report.period_stress = cell->stress() / force_scale;
+      report.repeat_energy = cell->energy();
     }
     report.energy = energy;
     report.contacts = m_pairs.pairs();

@@ -117,7 +117,7 @@ struct YarnRelaxOptions {
   double time_step = 0;         ///< [s] Euler's step and FIRE's first step; 0: 0.002 for Euler, 0.02 for FIRE
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
   StopRule stop_rule = StopRule::Leaf;
-  double force_tolerance = 0.02;  ///< StopRule::Force: the largest force per length / (B / r³)
+  double force_tolerance = 0.5;  ///< StopRule::Force: the largest force per length / (B / r³)
   long stall_window = 50;       ///< StopRule::Force: steps over which the energy must have stalled
   double energy_stall = 1e-4;   ///< StopRule::Force: the energy's fall over the window, a share of itself
   double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
@@ -182,6 +182,7 @@ struct YarnRelaxReport {
   bool free_period = false;
   Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Vector3d period_stress = Eigen::Vector3d::Zero();
+  double repeat_energy = 0;  ///< with a free period: one repeat's energy at the end (cell_stress)
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run
