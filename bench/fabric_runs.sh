@@ -27,10 +27,9 @@ done
 echo
 echo "| pattern | repeat (wales x courses) | relaxed repeat [mm] | width per wale [mm] | against stockinette | height per course [mm] | against stockinette | steps | s |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
-run plain stockinette
 for p in stockinette garter rib-1x1 rib-2x2 seed; do
   run "$p" "$p"
-  python3 - "$tmp/$p.json" "$tmp/plain.json" "$p" <<'PY'
+  python3 - "$tmp/$p.json" "$tmp/stockinette.json" "$p" <<'PY'
 import json, sys
 r, s, name = json.load(open(sys.argv[1])), json.load(open(sys.argv[2])), sys.argv[3]
 f, g = r["free_period"], s["free_period"]
