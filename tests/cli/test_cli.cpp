@@ -348,6 +348,41 @@ TEST(Cli, RelaxYarnRejectsADamagedCheckpointAndForeignYarn) {
   EXPECT_NE(r.output.find("holds other curves"), std::string::npos) << r.output;
 }
 
+TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  auto r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "s.bcc").string() + " --relax --free-period --report " +
+                     (dir / "r.json").string() + " --log " + (dir / "log.csv").string() + " --tile 2x2 --preview " + (dir / "p.bcc").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("free period: the repeat relaxed to"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stitches and"), std::string::npos) << r.output;
+  const auto report = slurp(dir / "r.json");
+  for (const char* key : {"\"free_period\"", "\"gauge_per_10cm\"", "\"Kc\"", "\"Kw\"", "\"loop_length_mm\"", "\"repeat_mm\"", "\"stop_rule\": \"leaf\"",
+                          "\"force_residual\"", "\"converged\": true", "\"pull_through_events\": 0"})
+    EXPECT_NE(report.find(key), std::string::npos) << key << "\n" << report;
+  EXPECT_NE(slurp(dir / "log.csv").find(",force,period_x,period_y\n"), std::string::npos);
+  // The preview is tiled at the relaxed period: wider than the emitted 2 x 6 mm.
+  const auto preview = skein::relax::read_bcc(dir / "p.bcc");
+  double lo = 1e9, hi = -1e9;
+  for (const auto& p : preview.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+  r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "e.bcc").string() + " --tile 2x2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  double elo = 1e9, ehi = -1e9;
+  for (const auto& p : skein::relax::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
+  EXPECT_GT(hi - lo, ehi - elo + 0.5);
+  // Refused, naming the option, with nothing written.
+  const std::array<std::pair<const char*, const char*>, 4> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
+                                                                         {"--relax --free-period --period 0.9x1", "leave out --period"},
+                                                                         {"--relax --stop-rule force --backend cuda", "runs on the CPU only"},
+                                                                         {"--relax --free-period --period-tolerance 0", "period tolerance"}}};
+  for (const auto& [args, message] : refusals) {
+    r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "refused.bcc").string() + " " + args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "refused.bcc")) << args;
+  }
+}
+
 TEST(Cli, PatternTilesEmitsAndRelaxes) {
   ScratchDir dir;
   const std::string patterns = SKEIN_PATTERNS_DIR;
