@@ -117,7 +117,8 @@ relax::MeshRelaxOptions mesh_options(const Keys& k) {
 }
 
 relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
-  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "stop_scale", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
+  k.only({"method", "backend", "max_steps", "max_seconds", "tolerance", "stall", "stop_scale", "stop_rule", "force_tolerance", "stall_window",
+          "energy_stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
           "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
   o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
@@ -127,6 +128,10 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
   o.tolerance = k.number("tolerance", o.tolerance, 0, 1);
   o.stall = k.number("stall", o.stall, 0, 1e3);
   o.clipped_scale = k.choice("stop_scale", "first", {"first", "clipped"}) == "clipped";
+  o.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "leaf", {"leaf", "force"}));
+  o.force_tolerance = k.number("force_tolerance", o.force_tolerance, 1e-9, 1e6);
+  o.stall_window = k.integer("stall_window", o.stall_window, 1, 1L << 40);
+  o.energy_stall = k.number("energy_stall", o.energy_stall, 0, 1);
   o.jam_steps = k.integer("jam_steps", o.jam_steps, 0, 1L << 40);
   o.jam_drop = k.number("jam_drop", o.jam_drop, 0, 1);
   o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);

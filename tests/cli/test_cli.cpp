@@ -269,7 +269,8 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   // The active set and the clipped stop scale: relaxations that report what they did, and only on the CPU.
   const auto relaxed = dir / "relaxed.bcc", report_file = dir / "cpu-only.json";
   for (const auto& [flags, key, refusal] : {std::tuple{std::string("--active-set"), std::string("\"integrated_share\""), std::string("the active set runs on the CPU only")},
-                                            {"--stop-scale clipped", "\"stop_scale\": \"clipped\"", "runs on the CPU only"}}) {
+                                            {"--stop-scale clipped", "\"stop_scale\": \"clipped\"", "runs on the CPU only"},
+                                            {"--stop-rule force", "\"stop_rule\": \"force\"", "runs on the CPU only"}}) {
     r = run_skein("relax-yarn " + project.string() + " " + flags + " --max-steps 20 --no-audit -o " + relaxed.string() + " --report " + report_file.string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(slurp(report_file).find(key), std::string::npos) << key;
@@ -279,6 +280,10 @@ TEST(Cli, RelaxYarnStandInWritesAMarkedPreviewAndTheActiveSetRelaxes) {
   }
   r = run_skein("relax-yarn " + project.string() + " --stop-scale median -o " + none.string());
   EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(std::filesystem::exists(none));
+  r = run_skein("relax-yarn " + project.string() + " --stop-rule force --force-tolerance -1 -o " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("force_tolerance"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(none));
 }
 
@@ -491,6 +496,10 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("key 'relax_yarn.contact_spacing'"), std::string::npos) << msg;
   msg = error_for("method.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"method": "rk4"}})");
   EXPECT_NE(msg.find("expected \"fire\" or \"euler\", found \"rk4\""), std::string::npos) << msg;
+  msg = error_for("rule.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"stop_rule": "relative"}})");
+  EXPECT_NE(msg.find("key 'relax_yarn.stop_rule'"), std::string::npos) << msg;
+  msg = error_for("force.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"stop_rule": "force", "force_tolerance": 0}})");
+  EXPECT_NE(msg.find("key 'relax_yarn.force_tolerance'"), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");
   EXPECT_NE(msg.find("key 'mesh'"), std::string::npos) << msg;
   msg = error_for("missing.json", R"({"mesh": "no-such.obj"})");
