@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <functional>
 #include <numeric>
@@ -334,7 +335,7 @@ public:
       cell.emplace(m_options.period, state.period.col(0), state.period.col(1));
       report.free_period = true;
     }
-    std::vector<double> energies;  // the force rule's window
+    std::deque<double> energies;  // the force rule's window: the last stall_window + 1 energies
     Eigen::Matrix<double, 3, 2> good_period = state.period;
     Eigen::Matrix3Xd grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
     double energy = 0, residual = 0, force = 0;
@@ -385,11 +386,12 @@ public:
       const double relative = residual / state.residual0;
       force = largest_force_per_length(m_system, grad) / force_scale;
       energies.push_back(energy);
+      if (static_cast<long>(energies.size()) > m_options.stall_window + 1) energies.pop_front();
       const auto stopped = [&] {
         if (m_options.stop_rule == StopRule::Leaf)
           return model::converged(state.step, residual, state.residual0, state.residual_prev, m_options.tolerance, m_options.stall);
-        const long w = m_options.stall_window, i = static_cast<long>(energies.size()) - 1;
-        return i >= w && force <= m_options.force_tolerance && energies[i - w] - energy <= m_options.energy_stall * std::abs(energy);
+        const bool full = static_cast<long>(energies.size()) == m_options.stall_window + 1;
+        return full && force <= m_options.force_tolerance && energies.front() - energy <= m_options.energy_stall * std::abs(energy);
       };
       const auto cell_converged = [&] { return !cell || cell->converged(m_options.period.tolerance * force_scale); };
       bool converged = stopped() && cell_converged();
