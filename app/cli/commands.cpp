@@ -195,6 +195,30 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
   return out;
 }
 
+Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given) {
+  Fabric out;
+  if (choice.yarn.empty() && choice.gauge.empty()) return out;
+  if (!choice.gauge.empty() && size_given) throw Error("", "--gauge", "sets the stitch size: leave out --stitch-size and --stitch-height");
+  if (!choice.yarn.empty() && radius_given) throw Error("", "--yarn", "sets the yarn radius: leave out --yarn-radius");
+  out.report = json::object();
+  std::optional<mesh::Gauge> gauge;
+  if (!choice.gauge.empty()) gauge = mesh::parse_gauge(choice.gauge);
+  if (!choice.yarn.empty()) {
+    const auto& weight = mesh::find_yarn_weight(choice.yarn);
+    out.radius = weight.diameter() / 2;
+    out.report["yarn"] = {{"weight", weight.name}, {"category", weight.category}, {"wraps_per_inch", weight.wraps_per_inch},
+                          {"diameter_mm", weight.diameter()}, {"needle_mm", weight.needle_mm}};
+    if (!gauge && !size_given) gauge = mesh::standard_gauge(weight);
+  }
+  if (gauge) {
+    out.size = gauge->stitch_size();
+    out.report["gauge_per_10cm"] = {{"stitches", gauge->stitches}, {"rows", gauge->rows}};
+    out.report["stitch_mm"] = {out.size->width, out.size->height};
+    out.report["munden_loop_length_mm"] = gauge->loop_length();
+  }
+  return out;
+}
+
 json guard_json(const relax::GuardCounters& g) {
   return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
           {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},
@@ -312,6 +336,13 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
       free["loop_length_mm"] = loop;
       free["Kc"] = run.repeat[1] / ly * loop;
       free["Kw"] = run.repeat[0] / lx * loop;
+      if (run.extra.contains("fabric") && run.extra["fabric"].contains("gauge_per_10cm")) {
+        // The relaxed repeat against the gauge and Munden's loop length that were asked for (--gauge, --yarn).
+        const json& fabric = run.extra["fabric"];
+        free["against_asked"] = {{"stitches", 100.0 * run.repeat[0] / lx / fabric["gauge_per_10cm"]["stitches"].get<double>()},
+                                 {"rows", 100.0 * run.repeat[1] / ly / fabric["gauge_per_10cm"]["rows"].get<double>()},
+                                 {"loop_length", loop / fabric["munden_loop_length_mm"].get<double>()}};
+      }
     }
     j["free_period"] = free;
     spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,

@@ -19,6 +19,7 @@
 #include "render/raster.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -102,6 +103,21 @@ std::pair<int, int> parse_rows(const std::string& s);
 std::pair<int, int> parse_assignment(const std::string& option, const std::string& s);
 /// TYPE=F pairs of --take-up-stitch.
 std::map<std::string, double> parse_take_up(const std::string& option, const std::vector<std::string>& pairs);
+
+/// What --yarn WEIGHT and --gauge S[xR] ask for (issue 24, part 1).
+struct FabricChoice {
+  std::string yarn, gauge;
+};
+/// The stitch size and yarn radius a fabric choice sets: --gauge sets the size; --yarn the radius (half its
+/// diameter) and, without --gauge, the size of its standard gauge. `size_given` and `radius_given` say whether
+/// --stitch-size/--stitch-height or --yarn-radius came too: each pair is refused together. `report` describes
+/// the fabric (yarn, gauge, Munden's loop length); null when nothing was asked.
+struct Fabric {
+  std::optional<mesh::StitchSize> size;
+  std::optional<double> radius;
+  json report;
+};
+Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given);
 
 /// SIGINT and SIGTERM set the returned flag (relaxations stop after their step, checkpoint and return) and are
 /// remembered for the exit status, 128 + the signal.

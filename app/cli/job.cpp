@@ -19,6 +19,7 @@
 #include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 
@@ -188,7 +189,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     throw Error(file.string(), "", std::string("is not valid JSON: ") + e.what());
   }
   const Keys k(j, "", file);
-  k.only({"name", "mesh", "labels", "stitch_size", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
+  k.only({"name", "mesh", "labels", "stitch_size", "gauge", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
   Job job;
   job.file = file;
   job.name = k.text("name", file.stem().string());
@@ -201,6 +202,15 @@ Job parse_job(const std::string& text, const fs::path& file) {
     job.stitch_size.width = size.number("width", job.stitch_size.width, 1e-3, 1e4);
     job.stitch_size.height = size.number("height", job.stitch_size.height, 1e-3, 1e4);
   }
+  if (k.has("gauge")) {
+    // Stitches and rows in 10 cm of stockinette (issue 24): the stitch size as a yarn label gives it.
+    if (k.has("stitch_size")) k.fail("gauge", "sets the stitch size: give stitch_size or gauge, not both");
+    const Keys gauge(k.at("gauge"), "gauge", file);
+    gauge.only({"stitches", "rows"});
+    if (!gauge.has("stitches")) gauge.fail(gauge.name("stitches"), "is missing: stitches in 10 cm of stockinette");
+    const double stitches = gauge.number("stitches", 0, 0.1, 1000);
+    job.stitch_size = mesh::Gauge{stitches, gauge.number("rows", mesh::kLoopShapeFactor * stitches, 0.1, 1000)}.stitch_size();
+  }
   if (k.has("edits")) {
     if (!k.at("edits").is_array()) k.fail("edits", "expected a list [...] of edits, found " + k.at("edits").dump());
     for (size_t i = 0; i < k.at("edits").size(); ++i) job.edits.push_back(job_edit(Keys(k.at("edits")[i], "edits[" + std::to_string(i) + "]", file)));
@@ -212,8 +222,21 @@ Job parse_job(const std::string& text, const fs::path& file) {
   if (const json m = stage("relax_mesh"); !m.is_null()) job.relax_mesh = mesh_options(Keys(m, "relax_mesh", file));
   if (k.has("yarn")) {
     const Keys yarn(k.at("yarn"), "yarn", file);
-    yarn.only({"radius", "take_up"});
+    yarn.only({"weight", "radius", "take_up"});
     job.yarn_radius = yarn.number("radius", 0, 0, 1e3);
+    if (yarn.has("weight")) {
+      // A yarn weight class (issue 24): its radius, and its standard gauge where the job gives no stitch size.
+      if (yarn.has("radius")) yarn.fail(yarn.name("weight"), "sets the radius: give radius or weight, not both");
+      const std::string name = yarn.text("weight", "");
+      const mesh::YarnWeight* weight = nullptr;
+      try {
+        weight = &mesh::find_yarn_weight(name);
+      } catch (const Error& e) {
+        yarn.fail(yarn.name("weight"), e.rule());
+      }
+      job.yarn_radius = weight->diameter() / 2;
+      if (!k.has("stitch_size") && !k.has("gauge")) job.stitch_size = mesh::standard_gauge(*weight).stitch_size();
+    }
     job.take_up = yarn.number("take_up", 1, 0.1, 10);
   }
   if (const json y = stage("relax_yarn"); !y.is_null()) job.relax_yarn = yarn_options(Keys(y, "relax_yarn", file), job.backend);

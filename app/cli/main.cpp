@@ -50,6 +50,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "print warnings and errors only");
+  // --yarn and --gauge (issue 24): the yarn and the fabric as a knitter gives them (docs/yarn.md, "Yarn and gauge").
+  const auto add_fabric = [](CLI::App* cmd, FabricChoice& f, const char* yarn_sets, bool gauge) {
+    cmd->add_option("--yarn", f.yarn, std::string("yarn weight (lace, fingering, sport, dk, worsted, bulky, super-bulky, jumbo or the CYC number 0-7): ") + yarn_sets);
+    if (gauge) cmd->add_option("--gauge", f.gauge, "stockinette gauge, stitches (x rows) in 10 cm, e.g. 18x24 (rows: 1.3 x the stitches when left out): sets the stitch size");
+  };
+  const auto size_given = [](CLI::App* cmd) { return cmd->count("--stitch-size") + cmd->count("--stitch-height") > 0; };
 
   // skein stitch
   auto* stitch = app.add_subcommand("stitch", "label a mesh and tessellate it into a stitch mesh (.skein)");
@@ -69,6 +75,8 @@ int main(int argc, char** argv) {
   stitch->add_option("--png", stitch_png, "picture of the stitch mesh coloured by row");
   stitch->add_option("--png-types", stitch_png_types, "picture of the stitch mesh coloured by stitch type");
   stitch->add_option("--stats", stitch_stats, "write the stitch-mesh statistics as JSON here ('-' for stdout)");
+  FabricChoice stitch_fabric;
+  add_fabric(stitch, stitch_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
 
   // skein label
   auto* label = app.add_subcommand("label", "label a mesh's knitting rows and save the labels (.skein)");
@@ -91,6 +99,8 @@ int main(int argc, char** argv) {
   label->add_option("--row-value", row_values, "set a row's stitch-row count: ROW=N (repeatable)");
   label->add_option("--mark-wale", marked_wales, "wale edges next to which increases and decreases go");
   label->add_option("-o,--output", label_out, "labels and tessellation values to write (.skein)")->required();
+  FabricChoice label_fabric;
+  add_fabric(label, label_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
 
   // skein edit
   auto* edit = app.add_subcommand("edit", "change stitch types of a stitch mesh: fills over rows, single faces");
@@ -115,6 +125,8 @@ int main(int argc, char** argv) {
   yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
   yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
   yarn_cmd->add_option("--yarn-radius", yarn_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  FabricChoice yarn_fabric;
+  add_fabric(yarn_cmd, yarn_fabric, "sets the yarn radius", false);
   yarn_cmd->add_option("--png", yarn_png, "picture of the yarn as shaded tubes");
   yarn_cmd->add_option("--color", yarn_color, "tube colour: type or yarn")->check(CLI::IsMember({"type", "yarn"}));
   yarn_cmd->add_option("--stitches", stitches_dir, "stitch library folder (default: the bundled stitches/)");
@@ -197,6 +209,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> ry_take_up_stitch;
   ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
+  FabricChoice ry_fabric;
+  add_fabric(ry, ry_fabric, "sets the yarn radius for a project", false);
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
   ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
   ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
@@ -268,6 +282,8 @@ int main(int argc, char** argv) {
   pat->add_option("--stitch-size", pat_size.width, "knits: stitch width [mm]; wovens: yarn spacing is 4 yarn radii")->capture_default_str();
   pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
   pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  FabricChoice pat_fabric;
+  add_fabric(pat, pat_fabric, "sets the yarn radius and, without --gauge, the stitch size of its standard gauge", true);
   pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
   std::vector<std::string> pat_take_up_stitch;
   pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
@@ -363,6 +379,9 @@ int main(int argc, char** argv) {
     if (*stitch) {
       if (!auto_label && stitch_labels.empty()) throw Error("", "skein stitch", "give --auto-label or --labels FILE");
       if (!height_given) size.height = size.width * 5.0 / 6.0;
+      const auto fabric = resolve_fabric(stitch_fabric, size_given(stitch), false);
+      if (fabric.size) size = *fabric.size;
+      if (!stitch_fabric.yarn.empty()) spdlog::info("stitch size {:.3g} x {:.3g} mm for {} yarn; give --yarn to skein yarn too", size.width, size.height, stitch_fabric.yarn);
       size.validate();
       for (const auto& p : {stitch_out, stitch_png, stitch_png_types})
         if (!p.empty()) check_writable(p);
@@ -386,8 +405,7 @@ int main(int argc, char** argv) {
                    report.mismatches.size());
       for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", stitch_in, f, why);
       t = {};
-      const bool size_given = stitch->count("--stitch-size") + stitch->count("--stitch-height") > 0;
-      if (stored_values && !size_given) {
+      if (stored_values && !size_given(stitch) && !fabric.size) {
         project.values = std::move(stored_values);
         spdlog::info("using the tessellation values stored in {}", stitch_labels);
       } else {
@@ -407,6 +425,7 @@ int main(int argc, char** argv) {
     }
     if (*label) {
       check_writable(label_out);
+      const auto label_fabric_size = resolve_fabric(label_fabric, size_given(label), false).size;
       mesh::Project project;
       project.input = load_input(label_in);
       const auto& m = *project.input;
@@ -425,6 +444,7 @@ int main(int argc, char** argv) {
       for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", label_in, f, why);
       for (const auto& [e, why] : report.mismatches) spdlog::warn("{}: edge {}: {}", label_in, e, why);
       if (label->count("--stitch-height") == 0) label_size.height = label_size.width * 5.0 / 6.0;
+      if (label_fabric_size) label_size = *label_fabric_size;
       project.stitch_size = label_size;
       if (report.valid()) {
         project.values = mesh::initial_values(m, *project.labels, label_size);
@@ -545,6 +565,7 @@ int main(int argc, char** argv) {
         if (!p.empty()) check_writable(p);
       Stopwatch t;
       mesh::EmitReport report;
+      if (const auto fabric = resolve_fabric(yarn_fabric, false, yarn_cmd->count("--yarn-radius") > 0); fabric.radius) yarn_radius = *fabric.radius;
       const auto yarn = yarn_of(yarn_in, yarn_radius, stitches_dir, &report);
       spdlog::info("emitted {} yarns ({} closed), {} control points, radius {:.4g} mm ({:.3f} s)", yarn.curves(),
                    std::count(yarn.closed.begin(), yarn.closed.end(), 1), yarn.points.size(), yarn.radius, t.seconds());
@@ -586,6 +607,10 @@ int main(int argc, char** argv) {
           for (const auto& flag : taken) list += (list.empty() ? "" : " ") + flag;
           spdlog::info("{} carries yarn settings (saved by the app): using them for {}", ry_in, list);
         }
+      }
+      if (const auto fabric = resolve_fabric(ry_fabric, false, ry->count("--yarn-radius") > 0); fabric.radius) {
+        if (is_bcc(ry_in)) throw Error("", "--yarn", "sets the radius of yarn emitted from a project; a .bcc keeps its own");
+        ry_radius = *fabric.radius;
       }
       ry_options.method = relax::parse_yarn_method(ry_method);
       ry_options.clipped_scale = ry_stop_scale == "clipped";
@@ -730,6 +755,9 @@ int main(int argc, char** argv) {
         else spdlog::info("tiled {} over {} of {} chosen stitches from face {}; wrote {}", pattern.name, tiled.stitches, faces.size(), pat_face, pat_out);
         return 0;
       }
+      const auto fabric = resolve_fabric(pat_fabric, size_given(pat), pat->count("--yarn-radius") > 0);
+      if (fabric.size) pat_size = *fabric.size;
+      if (fabric.radius) pat_radius = *fabric.radius;
       const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
       mesh::YarnCurves yarn;
       relax::ShapeTargets targets;
@@ -762,6 +790,7 @@ int main(int argc, char** argv) {
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
       }
+      if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
       spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
@@ -805,11 +834,13 @@ int main(int argc, char** argv) {
         return exit_status(report);
       }
       write_yarn(yarn, pat_out);
-      if (!pat_report.empty())
-        write_json({{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
-                    {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},
-                    {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}},
-                   pat_report);
+      if (!pat_report.empty()) {
+        json j = {{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
+                  {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},
+                  {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}};
+        if (!fabric.report.is_null()) j["fabric"] = fabric.report;
+        write_json(j, pat_report);
+      }
       if (!pat_png.empty())
         render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, pat_views,
                           pat_panel);

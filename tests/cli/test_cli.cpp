@@ -388,6 +388,42 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   }
 }
 
+TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  // Worsted: its radius (10 wraps per inch) and its standard gauge, 18 stitches and 23.4 rows in 10 cm.
+  auto r = run_skein("pattern " + patterns + "/stockinette.knit --yarn worsted -o " + (dir / "w.bcc").string() + " --report " + (dir / "w.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NEAR(skein::relax::read_bcc(dir / "w.bcc").radius, 1.27, 1e-6);
+  auto report = slurp(dir / "w.json");
+  for (const char* key : {"\"weight\": \"worsted\"", "\"stitches\": 18.0", "\"munden_loop_length_mm\": 22.2", "\"stitch_mm\": [\n"})
+    EXPECT_NE(report.find(key), std::string::npos) << key << "\n" << report;
+  // A free period reports the relaxed gauge against the one asked for.
+  r = run_skein("pattern " + patterns + "/stockinette.knit --gauge 20x25 --relax --free-period --max-steps 200 -o " + (dir / "g.bcc").string() +
+                " --report " + (dir / "g.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  report = slurp(dir / "g.json");
+  EXPECT_NE(report.find("\"against_asked\""), std::string::npos) << report;
+  EXPECT_NEAR(skein::relax::read_bcc(dir / "g.bcc").radius, 0.5, 1e-6);  // a tenth of the 5 mm stitch without --yarn
+  // A gauge sets the tessellation's stitch size.
+  r = run_skein("stitch " + kModels + "/tube.obj --auto-label --gauge 10x12.5 -o " + (dir / "t.skein").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(dir / "t.skein").find("stitch-size 10 8\n"), std::string::npos) << slurp(dir / "t.skein").substr(0, 200);
+  // Refused, naming the option, with nothing written.
+  const std::array<std::pair<std::string, const char*>, 5> refusals = {
+      {{"pattern " + patterns + "/stockinette.knit --gauge 18 --stitch-size 5", "leave out --stitch-size"},
+       {"pattern " + patterns + "/stockinette.knit --yarn dk --yarn-radius 1", "leave out --yarn-radius"},
+       {"pattern " + patterns + "/stockinette.knit --yarn wool", "is not a yarn weight; one of lace, fingering"},
+       {"pattern " + patterns + "/stockinette.knit --gauge 18x", "expected STITCHES or STITCHESxROWS"},
+       {"stitch " + kModels + "/tube.obj --auto-label --gauge 0", "must be a number in (0, 1000]"}}};
+  for (const auto& [args, message] : refusals) {
+    r = run_skein(args + " -o " + (dir / "refused.skein").string());
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "refused.skein")) << args;
+  }
+}
+
 TEST(Cli, PatternTilesEmitsAndRelaxes) {
   ScratchDir dir;
   const std::string patterns = SKEIN_PATTERNS_DIR;
@@ -500,6 +536,14 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("key 'relax_yarn.stop_rule'"), std::string::npos) << msg;
   msg = error_for("force.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"stop_rule": "force", "force_tolerance": 0}})");
   EXPECT_NE(msg.find("key 'relax_yarn.force_tolerance'"), std::string::npos) << msg;
+  msg = error_for("gauge.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "gauge": {"stitches": 18}, "stitch_size": {"width": 5}})");
+  EXPECT_NE(msg.find("key 'gauge': sets the stitch size"), std::string::npos) << msg;
+  msg = error_for("rows.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "gauge": {"rows": 18}})");
+  EXPECT_NE(msg.find("key 'gauge.stitches': is missing"), std::string::npos) << msg;
+  msg = error_for("weight.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"weight": "wool"}})");
+  EXPECT_NE(msg.find("key 'yarn.weight': is not a yarn weight"), std::string::npos) << msg;
+  msg = error_for("radius.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"weight": "dk", "radius": 1}})");
+  EXPECT_NE(msg.find("key 'yarn.weight': sets the radius"), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");
   EXPECT_NE(msg.find("key 'mesh'"), std::string::npos) << msg;
   msg = error_for("missing.json", R"({"mesh": "no-such.obj"})");

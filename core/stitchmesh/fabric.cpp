@@ -1,0 +1,77 @@
+#include "stitchmesh/fabric.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+
+#include "common/error.hpp"
+
+namespace skein::mesh {
+
+const std::vector<YarnWeight>& yarn_weights() {
+  // Craft Yarn Council, Standard Yarn Weight System: stockinette stitches in 4 in (10 cm) and needle sizes per
+  // category; wraps per inch as yarn-weight charts give them. The middle of each range.
+  static const std::vector<YarnWeight> weights = {
+      {"lace", {"0", "cobweb", "thread"}, 0, 35, 36.5, 1.875},
+      {"fingering", {"1", "super-fine", "sock", "baby"}, 1, 20.5, 29.5, 2.75},
+      {"sport", {"2", "fine"}, 2, 16.5, 24.5, 3.5},
+      {"dk", {"3", "light", "light-worsted"}, 3, 13, 22.5, 4.125},
+      {"worsted", {"4", "medium", "aran", "afghan"}, 4, 10, 18, 5.0},
+      {"bulky", {"5", "chunky", "craft", "rug"}, 5, 7.5, 13.5, 6.75},
+      {"super-bulky", {"6", "super-chunky", "roving"}, 6, 5.5, 9, 10.375},
+      {"jumbo", {"7"}, 7, 3.5, 5, 15},
+  };
+  return weights;
+}
+
+const YarnWeight& find_yarn_weight(const std::string& name) {
+  std::string key = name;
+  std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return c == '_' || c == ' ' ? '-' : std::tolower(c); });
+  std::string names;
+  for (const auto& w : yarn_weights()) {
+    if (w.name == key || std::find(w.aliases.begin(), w.aliases.end(), key) != w.aliases.end()) return w;
+    names += (names.empty() ? "" : ", ") + w.name;
+  }
+  throw Error("", "--yarn '" + name + "'", "is not a yarn weight; one of " + names + " (or the Craft Yarn Council's number 0 to 7)");
+}
+
+void Gauge::validate() const {
+  for (const auto& [what, v] : {std::pair{"stitches", stitches}, std::pair{"rows", rows}})
+    if (!(std::isfinite(v) && v > 0 && v <= 1000))
+      throw Error("", "gauge", std::string(what) + " in 10 cm must be a number in (0, 1000], got " + std::to_string(v));
+}
+
+StitchSize Gauge::stitch_size() const {
+  validate();
+  return {100 / stitches, 100 / rows};
+}
+
+Gauge parse_gauge(const std::string& text, const std::string& option) {
+  const auto bad = [&](const std::string& rule) { return Error("", option + " '" + text + "'", rule); };
+  const std::string format = "expected STITCHES or STITCHESxROWS in 10 cm of stockinette (e.g. 18x24)";
+  // A number that fills its whole part of the text: "18", "18.5", "1e2"; not "18 rows" or "0x12".
+  const auto number = [&](const std::string& part) {
+    if (part.empty() || part.find_first_not_of("0123456789.+-eE") != std::string::npos) throw bad(format);
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (*end != 0) throw bad(format);
+    return v;
+  };
+  const auto x = text.find('x');
+  Gauge g;
+  g.stitches = number(text.substr(0, x));
+  g.rows = x == std::string::npos ? kLoopShapeFactor * g.stitches : number(text.substr(x + 1));
+  try {
+    g.validate();
+  } catch (const Error& e) {
+    throw bad(e.rule());
+  }
+  return g;
+}
+
+Gauge gauge_of(const StitchSize& size) { return {100 / size.width, 100 / size.height}; }
+
+Gauge standard_gauge(const YarnWeight& weight) { return {weight.stitches_per_10cm, kLoopShapeFactor * weight.stitches_per_10cm}; }
+
+}  // namespace skein::mesh
