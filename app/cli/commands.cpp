@@ -219,6 +219,26 @@ Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_g
   return out;
 }
 
+void log_face_problems(const std::string& file, const mesh::InputMesh& mesh, const mesh::LabelReport& report, spdlog::level::level_enum level) {
+  constexpr size_t kShown = 10;
+  std::map<size_t, long> not_quads;  // corners -> faces among the problems
+  for (size_t i = 0; i < report.face_problems.size(); ++i) {
+    const auto& [f, why] = report.face_problems[i];
+    if (i < kShown) spdlog::log(level, "{}: face {}: {}", file, f, why);
+    if (mesh.face(f).size() != 4) ++not_quads[mesh.face(f).size()];
+  }
+  if (report.face_problems.size() > kShown) spdlog::log(level, "{}: ... and {} more faces like these", file, report.face_problems.size() - kShown);
+  if (not_quads.empty()) return;
+  std::string kinds;
+  long total = 0;
+  for (const auto& [corners, n] : not_quads) {
+    kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + (corners == 3 ? " triangles" : " " + std::to_string(corners) + "-gons");
+    total += n;
+  }
+  spdlog::log(level, "{}: {} of these {} faces are not quads ({}): rows are labeled across quads (Yuksel 2012 §5), so a mesh of triangles "
+              "or other polygons needs remeshing to quads first", file, total, report.face_problems.size(), kinds);
+}
+
 json guard_json(const relax::GuardCounters& g) {
   return {{"steps", g.steps},           {"rate_limited", g.rate_limited}, {"pairs_tested", g.pairs_tested},
           {"pairs_skipped", g.pairs_skipped}, {"sphere_tests", g.sphere_tests}, {"finest_hits", g.finest_hits},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
@@ -69,6 +70,10 @@ mesh::InputMesh load_input(const fs::path& path);
 /// Labels (and tessellation values, when stored) in `path` for `mesh`: the same faces, corner for corner
 /// (vertex ids may differ).
 std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path);
+
+/// A labeling's face problems in the log at `level`: the first ten one by one, then how many more, and what
+/// the faces that are not quads have to do with it (labeling works on quads, Yuksel 2012 §5).
+void log_face_problems(const std::string& file, const mesh::InputMesh& mesh, const mesh::LabelReport& report, spdlog::level::level_enum level);
 
 json stats_json(const mesh::StitchMesh& sm);
 json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels);

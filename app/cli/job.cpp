@@ -189,7 +189,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     throw Error(file.string(), "", std::string("is not valid JSON: ") + e.what());
   }
   const Keys k(j, "", file);
-  k.only({"name", "mesh", "labels", "stitch_size", "gauge", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
+  k.only({"name", "mesh", "labels", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
   Job job;
   job.file = file;
   job.name = k.text("name", file.stem().string());
@@ -211,6 +211,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     const double stitches = gauge.number("stitches", 0, 0.1, 1000);
     job.stitch_size = mesh::Gauge{stitches, gauge.number("rows", mesh::kLoopShapeFactor * stitches, 0.1, 1000)}.stitch_size();
   }
+  job.max_stitches = k.number("max_stitches", job.max_stitches, 1, 1e9);
   if (k.has("edits")) {
     if (!k.at("edits").is_array()) k.fail("edits", "expected a list [...] of edits, found " + k.at("edits").dump());
     for (size_t i = 0; i < k.at("edits").size(); ++i) job.edits.push_back(job_edit(Keys(k.at("edits")[i], "edits[" + std::to_string(i) + "]", file)));
@@ -332,6 +333,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       run.report()["labels"] = labels_json(*project.input, *project.labels);
     });
     run.stage("tessellate and edit", [&] {
+      mesh::check_stitch_count(*project.input, job.stitch_size, job.max_stitches);
       if (!project.values) project.values = mesh::initial_values(*project.input, *project.labels, job.stitch_size);
       auto stitch = mesh::tessellate(*project.input, *project.labels, *project.values);
       for (const auto& edit : job.edits) {

@@ -28,6 +28,7 @@ struct Job {
   std::filesystem::path mesh;
   std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label
   mesh::StitchSize stitch_size;
+  double max_stitches = mesh::kDefaultMaxStitches;  ///< refused past this estimate (check_stitch_count)
   std::vector<JobEdit> edits;
   std::optional<relax::MeshRelaxOptions> relax_mesh;  ///< none: skipped
   double yarn_radius = 0;        ///< [mm]; 0: a tenth of the stitch width

@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
   stitch->add_option("--png-types", stitch_png_types, "picture of the stitch mesh coloured by stitch type");
   stitch->add_option("--stats", stitch_stats, "write the stitch-mesh statistics as JSON here ('-' for stdout)");
   FabricChoice stitch_fabric;
+  double max_stitches = mesh::kDefaultMaxStitches;
+  stitch->add_option("--max-stitches", max_stitches, "refuse a mesh that would make more stitches than this (its area over the stitch's)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
   add_fabric(stitch, stitch_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
 
   // skein label
@@ -100,6 +103,8 @@ int main(int argc, char** argv) {
   label->add_option("--mark-wale", marked_wales, "wale edges next to which increases and decreases go");
   label->add_option("-o,--output", label_out, "labels and tessellation values to write (.skein)")->required();
   FabricChoice label_fabric;
+  bool label_partial = false;
+  label->add_flag("--partial", label_partial, "write the labels even when some faces are not labeled yet (to go on later, by hand or in the app); exit 1");
   add_fabric(label, label_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
 
   // skein edit
@@ -391,6 +396,7 @@ int main(int argc, char** argv) {
       project.input = load_input(stitch_in);
       const auto& m = *project.input;
       spdlog::info("loaded {}: {} vertices, {} faces ({:.3f} s)", stitch_in, m.num_vertices(), m.num_faces(), t.seconds());
+      mesh::check_stitch_count(m, size, max_stitches);  // before any work that grows with the stitch count
       t = {};
       std::optional<mesh::TessellationValues> stored_values;
       if (auto_label) {
@@ -403,7 +409,7 @@ int main(int argc, char** argv) {
       const auto report = mesh::validate_labels(m, *project.labels);
       spdlog::info("labeled {} rows ({:.3f} s); {} edges with opposite wale directions on their two sides", project.labels->rows, t.seconds(),
                    report.mismatches.size());
-      for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", stitch_in, f, why);
+      log_face_problems(stitch_in, m, report, spdlog::level::err);
       t = {};
       if (stored_values && !size_given(stitch) && !fabric.size) {
         project.values = std::move(stored_values);
@@ -441,8 +447,12 @@ int main(int argc, char** argv) {
         mesh::flip_row(*project.labels, r);
       }
       const auto report = mesh::validate_labels(m, *project.labels);
-      for (const auto& [f, why] : report.face_problems) spdlog::error("{}: face {}: {}", label_in, f, why);
+      log_face_problems(label_in, m, report, label_partial ? spdlog::level::warn : spdlog::level::err);
       for (const auto& [e, why] : report.mismatches) spdlog::warn("{}: edge {}: {}", label_in, e, why);
+      if (!report.valid() && !label_partial)
+        throw Error(label_in, "face " + std::to_string(report.face_problems.front().first),
+                    std::to_string(report.face_problems.size()) + " of " + std::to_string(m.num_faces()) +
+                        " faces are not labeled (listed above); nothing written. --partial writes the labels made so far");
       if (label->count("--stitch-height") == 0) label_size.height = label_size.width * 5.0 / 6.0;
       if (label_fabric_size) label_size = *label_fabric_size;
       project.stitch_size = label_size;

@@ -148,6 +148,7 @@ void Document::set_stitch_size(const mesh::StitchSize& size) {
   if (m_state.labels && mesh::validate_labels(*m_input, *m_state.labels).valid()) {
     next.values = mesh::initial_values(*m_input, *m_state.labels, size);
     if (m_state.stitch) {
+      mesh::check_stitch_count(*m_input, size, mesh::kDefaultMaxStitches);
       next.stitch = mesh::tessellate(*m_input, *m_state.labels, *next.values);
       next.rest.reset();
       next.yarn.reset();
@@ -207,6 +208,7 @@ void Document::generate_stitch_mesh() {
     throw Error("", "face " + std::to_string(report.face_problems.front().first),
                 report.face_problems.front().second + " (" + std::to_string(report.face_problems.size()) + " faces cannot be tessellated)");
   EditState next = m_state;
+  mesh::check_stitch_count(*m_input, m_state.stitch_size, mesh::kDefaultMaxStitches);
   if (!next.values) next.values = mesh::initial_values(*m_input, *m_state.labels, m_state.stitch_size);
   next.stitch = mesh::tessellate(*m_input, *m_state.labels, *next.values);
   next.rest.reset();

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <unordered_map>
 
@@ -157,17 +159,16 @@ double InputMesh::bounding_diagonal() const {
   return box.diagonal().norm();
 }
 
-InputMesh load_mesh(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(name, "", "no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(name, "", "not a regular file");
-  {
-    std::FILE* probe = std::fopen(path.c_str(), "rb");
-    if (!probe) throw Error(name, "", "cannot be opened for reading");
-    std::fclose(probe);
-  }
+namespace {
 
+/// What a mesh file holds: positions (welded across the file's meshes) and polygons.
+struct MeshData {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<int>> faces;
+};
+
+MeshData read_with_assimp(const std::filesystem::path& path) {
+  const std::string name = path.string();
   Assimp::Importer importer;
   // Drop everything but positions so that welding joins corners that differ only in normals or UVs.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
@@ -178,8 +179,8 @@ InputMesh load_mesh(const std::filesystem::path& path) {
                                                               aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
   if (!scene) throw Error(name, "", std::string("cannot read it as a mesh: ") + importer.GetErrorString());
 
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::vector<int>> faces;
+  MeshData data;
+  auto& [points, faces] = data;
   // Weld identical positions across all meshes of the scene (assimp joins only within one mesh).
   std::map<std::array<double, 3>, int> index_of;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -210,6 +211,65 @@ InputMesh load_mesh(const std::filesystem::path& path) {
       faces.push_back(std::move(loop));
     }
   }
+  return data;
+}
+
+// MeshData through the contained reader's pipe: counts, then doubles and ints as this machine stores them.
+template <class T> void put(std::string& out, T v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+template <class T> T take(const std::string& in, size_t& at) {
+  if (at + sizeof(T) > in.size()) throw Error("the mesh reader's answer is cut short");
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return v;
+}
+
+std::string pack(const MeshData& data) {
+  std::string out;
+  put<std::uint64_t>(out, data.points.size());
+  for (const auto& p : data.points) put(out, p.x()), put(out, p.y()), put(out, p.z());
+  put<std::uint64_t>(out, data.faces.size());
+  for (const auto& f : data.faces) {
+    put<std::uint32_t>(out, static_cast<std::uint32_t>(f.size()));
+    for (int v : f) put<std::int32_t>(out, v);
+  }
+  return out;
+}
+
+MeshData unpack(const std::string& in) {
+  MeshData data;
+  size_t at = 0;
+  const auto points = take<std::uint64_t>(in, at);
+  if (points > in.size() / 24) throw Error("the mesh reader's answer is cut short");
+  data.points.resize(points);
+  for (auto& p : data.points) {
+    const double x = take<double>(in, at), y = take<double>(in, at), z = take<double>(in, at);
+    p = {x, y, z};
+  }
+  const auto faces = take<std::uint64_t>(in, at);
+  if (faces > in.size() / 4) throw Error("the mesh reader's answer is cut short");
+  data.faces.resize(faces);
+  for (auto& f : data.faces) {
+    f.resize(take<std::uint32_t>(in, at));
+    for (int& v : f) v = take<std::int32_t>(in, at);
+  }
+  return data;
+}
+
+}  // namespace
+
+InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& limits) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(name, "", "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(name, "", "not a regular file");
+  {
+    std::FILE* probe = std::fopen(path.c_str(), "rb");
+    if (!probe) throw Error(name, "", "cannot be opened for reading");
+    std::fclose(probe);
+  }
+  // assimp parses the file in a child process: a crash or a blow-up there is an error here (issue 25).
+  auto [points, faces] = unpack(run_contained(name, "the mesh reader", limits, [&] { return pack(read_with_assimp(path)); }));
 
   // Drop vertices no face uses (OBJ files often carry them); keep the order of the rest.
   std::vector<int> used(points.size(), -1);

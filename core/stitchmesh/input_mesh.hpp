@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include "common/contained.hpp"
+
 namespace skein::mesh {
 
 struct MeshTraits : OpenMesh::DefaultTraits {
@@ -67,9 +69,11 @@ private:
 };
 
 /// Reads any format assimp reads (OBJ, PLY, glTF, FBX, ...) without triangulating; identical vertices are
-/// welded across all meshes of the file. Throws skein::Error naming the file for a missing or unreadable
-/// file, an unknown format, and every rule of InputMesh.
-InputMesh load_mesh(const std::filesystem::path& path);
+/// welded across all meshes of the file. assimp runs in a child process under `limits` (run_contained), so a
+/// file that crashes it or makes it take all memory or time is an error, not the end of skein. Throws
+/// skein::Error naming the file for a missing or unreadable file, an unknown format, a crash or a limit
+/// reached in the reader, and every rule of InputMesh.
+InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& limits = ContainedLimits::from_environment());
 
 /// Writes the mesh as OBJ with its polygons (atomically).
 void write_obj(const InputMesh& mesh, const std::filesystem::path& path);

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
+
+#include <Eigen/Geometry>
 
 #include "common/error.hpp"
 #include "stitchmesh/mean_value.hpp"
@@ -226,6 +229,29 @@ private:
 void StitchSize::validate() const {
   if (!(std::isfinite(width) && width > 0)) throw Error("", "stitch size", "width must be a positive number of mm, got " + std::to_string(width));
   if (!(std::isfinite(height) && height > 0)) throw Error("", "stitch size", "height must be a positive number of mm, got " + std::to_string(height));
+}
+
+double estimated_stitches(const InputMesh& mesh, const StitchSize& size) {
+  size.validate();
+  double area = 0;
+  for (const auto& face : mesh.faces()) {
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell: twice the polygon's vector area
+    for (size_t i = 0; i < face.size(); ++i) normal += mesh.point(face[i]).cross(mesh.point(face[(i + 1) % face.size()]));
+    area += 0.5 * normal.norm();
+  }
+  return area / (size.width * size.height);
+}
+
+void check_stitch_count(const InputMesh& mesh, const StitchSize& size, double max_stitches) {
+  const double n = estimated_stitches(mesh, size);
+  if (!(n <= max_stitches)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "would make about %.3g stitches of %g x %g mm (its surface is %.3g m²), more than the limit of %.3g (--max-stitches): "
+                  "check the mesh's units, or use larger stitches",
+                  n, size.width, size.height, n * size.width * size.height * 1e-6, max_stitches);
+    throw Error(mesh.source(), "", text);
+  }
 }
 
 TessellationValues initial_values(const InputMesh& mesh, const Labeling& labels, const StitchSize& size) {

@@ -32,6 +32,13 @@ void set_row_value(const InputMesh& mesh, const Labeling& labels, TessellationVa
 /// Marks (or unmarks) a wale edge as the one increases and decreases of its faces are placed along.
 void mark_wale_edge(const InputMesh& mesh, const Labeling& labels, TessellationValues& values, int edge, bool marked);
 
+/// About how many stitches the mesh makes at this stitch size: its surface area over the stitch's (issue 25).
+double estimated_stitches(const InputMesh& mesh, const StitchSize& size);
+/// The default of `--max-stitches`: more than any garment needs, fewer than fill this machine's memory.
+inline constexpr double kDefaultMaxStitches = 5e6;
+/// Throws skein::Error naming the mesh, the estimate and the stitch size when it passes `max_stitches`.
+void check_stitch_count(const InputMesh& mesh, const StitchSize& size, double max_stitches);
+
 /// Tessellates every labeled face into stitch faces: edges split uniformly, inner vertices placed with mean
 /// value coordinates over the face, increase/decrease faces next to the wale edges (or the marked one).
 /// Throws skein::Error naming the face when the labeling is invalid or a stitch row would change its

@@ -107,14 +107,58 @@ TEST(Cli, LabelRowByRowByHand) {
   ScratchDir dir;
   const auto out = (dir / "l.skein").string();
   // The swatch's bottom border edge 0, then the next row across course edge 2 (face 0's top edge).
-  const auto partial = run_skein("label " + kModels + "/swatch.obj --first-row 0 --next-row 2 -o " + out);
-  EXPECT_EQ(partial.status, 1) << partial.output;  // rows 2 and 3 are still unlabeled: named, and saved
+  // Rows 2 and 3 are still unlabeled: named, and nothing is written (exit 2) unless --partial asks for it.
+  const auto refused = run_skein("label " + kModels + "/swatch.obj --first-row 0 --next-row 2 -o " + out);
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("8 of 16 faces are not labeled (listed above); nothing written. --partial writes"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto partial = run_skein("label " + kModels + "/swatch.obj --first-row 0 --next-row 2 --partial -o " + out);
+  EXPECT_EQ(partial.status, 1) << partial.output;
   EXPECT_NE(partial.output.find("is not labeled"), std::string::npos) << partial.output;
   const auto stats = run_skein("stats " + out + " --json");
   EXPECT_NE(stats.output.find("\"invalid_faces\": 8"), std::string::npos) << stats.output;
   const auto bad = run_skein("label " + kModels + "/swatch.obj --first-row 2 -o " + out);  // an inner edge
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("not a border edge"), std::string::npos) << bad.output;
+}
+
+TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
+  ScratchDir dir;
+  std::string obj;
+  for (int y = 0; y <= 6; ++y)
+    for (int x = 0; x <= 6; ++x) obj += "v " + std::to_string(10 * x) + " " + std::to_string(10 * y) + " 0\n";
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x) {
+      const int a = y * 7 + x + 1, b = a + 1, c = a + 8, d = a + 7;
+      obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\nf " + std::to_string(a) + " " + std::to_string(c) +
+             " " + std::to_string(d) + "\n";
+    }
+  const auto mesh = dir.write("tris.obj", obj);
+  for (const std::string command : {"label ", "stitch --auto-label "}) {
+    const auto r = run_skein(command + mesh.string() + " -o " + (dir / "t.skein").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("... and 62 more faces like these"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("72 of these 72 faces are not quads (72 triangles): rows are labeled across quads"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("face 10:"), std::string::npos) << r.output;  // ten listed, not 72
+    EXPECT_FALSE(std::filesystem::exists(dir / "t.skein"));
+  }
+}
+
+TEST(Cli, AMeshThatWouldMakeTooManyStitchesIsRefusedBeforeTessellating) {
+  ScratchDir dir;
+  // The swatch (120 x 100 mm) read as if its millimetres were stitches of 10 µm: about 1.4e8 stitches.
+  auto r = run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 0.01 -o " + (dir / "s.skein").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("would make about 1.44e+08 stitches of 0.01 x 0.00833333 mm (its surface is 0.012 m²), more than the limit of 5e+06 "
+                          "(--max-stitches): check the mesh's units"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.skein"));
+  r = run_skein("stitch " + kModels + "/swatch.obj --auto-label --max-stitches 100 -o " + (dir / "s.skein").string());  // 333 at 6 x 5 mm
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("more than the limit of 100"), std::string::npos) << r.output;
+  r = run_skein("stitch " + kModels + "/swatch.obj --auto-label --max-stitches 1000 -o " + (dir / "s.skein").string());
+  EXPECT_EQ(r.status, 0) << r.output;
 }
 
 TEST(Cli, YarnExportStatsAndRender) {
@@ -544,6 +588,8 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("key 'yarn.weight': is not a yarn weight"), std::string::npos) << msg;
   msg = error_for("radius.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"weight": "dk", "radius": 1}})");
   EXPECT_NE(msg.find("key 'yarn.weight': sets the radius"), std::string::npos) << msg;
+  msg = error_for("max.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "max_stitches": 0})");
+  EXPECT_NE(msg.find("key 'max_stitches'"), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");
   EXPECT_NE(msg.find("key 'mesh'"), std::string::npos) << msg;
   msg = error_for("missing.json", R"({"mesh": "no-such.obj"})");
