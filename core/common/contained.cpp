@@ -106,6 +106,7 @@ ContainedLimits ContainedLimits::from_environment() {
 
 std::string run_contained(const std::string& file, const std::string& what, const ContainedLimits& limits,
                           const std::function<std::string()>& work) {
+  if (!(limits.seconds > 0)) throw Error(file, "", what + " needs a time limit");
   int fds[2];
   if (::pipe(fds) != 0) throw Error(file, "", what + " could not start: pipe: " + std::strerror(errno));
   const pid_t pid = ::fork();

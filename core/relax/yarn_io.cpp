@@ -126,11 +126,13 @@ void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& pa
       std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", p.x(), p.y(), p.z());
       out << buf;
     }
+    // One two-point `l` record per segment: Blender's OBJ importer (3.4) keeps only the first segment of a
+    // longer record, and every other reader takes these too.
     for (int c = 0; c < yarn.curves(); ++c) {
-      out << "o yarn" << c << "\nl";
-      for (int i = yarn.curve_start[c]; i < yarn.curve_start[c + 1]; ++i) out << ' ' << i + 1;
-      if (yarn.closed[c]) out << ' ' << yarn.curve_start[c] + 1;
-      out << '\n';
+      out << "o yarn" << c << '\n';
+      const int first = yarn.curve_start[c], last = yarn.curve_start[c + 1];
+      for (int i = first; i + 1 < last; ++i) out << "l " << i + 1 << ' ' << i + 2 << '\n';
+      if (yarn.closed[c] && last - first > 2) out << "l " << last << ' ' << first + 1 << '\n';
     }
   });
 }
@@ -183,15 +185,24 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
       const auto& pts = curves[c];
       if (pts.size() < 2) continue;
       out << "o yarn" << c << '\n';
-      for (const auto& ring : tube_rings(pts, yarn.radius, options.sides))
-        for (const auto& p : ring) {
+      const auto rings = tube_rings(pts, yarn.radius, options.sides);
+      for (size_t i = 0; i < rings.size(); ++i)
+        for (const auto& p : rings[i]) {
           std::snprintf(buf, sizeof buf, "v %.6g %.6g %.6g\n", p.x(), p.y(), p.z());
           out << buf;
         }
+      // A normal per vertex, out from the centreline, so that renderers shade the tubes smooth.
+      for (size_t i = 0; i < rings.size(); ++i)
+        for (const auto& p : rings[i]) {
+          const Eigen::Vector3d n = (p - pts[i]).normalized();
+          std::snprintf(buf, sizeof buf, "vn %.5f %.5f %.5f\n", n.x(), n.y(), n.z());
+          out << buf;
+        }
+      const auto corner = [&](long v) { return std::to_string(v) + "//" + std::to_string(v); };
       for (size_t i = 0; i + 1 < pts.size(); ++i)
         for (int k = 0; k < options.sides; ++k) {
           const long a = base + static_cast<long>(i) * options.sides + k, b = base + static_cast<long>(i) * options.sides + (k + 1) % options.sides;
-          out << "f " << a << ' ' << b << ' ' << b + options.sides << ' ' << a + options.sides << '\n';
+          out << "f " << corner(a) << ' ' << corner(b) << ' ' << corner(b + options.sides) << ' ' << corner(a + options.sides) << '\n';
         }
       base += static_cast<long>(pts.size()) * options.sides;
     }

@@ -269,7 +269,11 @@ InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& li
     std::fclose(probe);
   }
   // assimp parses the file in a child process: a crash or a blow-up there is an error here (issue 25).
-  auto [points, faces] = unpack(run_contained(name, "the mesh reader", limits, [&] { return pack(read_with_assimp(path)); }));
+  // Without a time limit given, 10 s and 2 s more per MB of file: a few bytes that hang assimp (fuzzing found
+  // a truncated PLY face list) wait 10 s, not forever.
+  ContainedLimits bounded = limits;
+  if (!(bounded.seconds > 0)) bounded.seconds = 10 + 2 * static_cast<double>(std::filesystem::file_size(path, ec)) / 1e6;
+  auto [points, faces] = unpack(run_contained(name, "the mesh reader", bounded, [&] { return pack(read_with_assimp(path)); }));
 
   // Drop vertices no face uses (OBJ files often carry them); keep the order of the rest.
   std::vector<int> used(points.size(), -1);

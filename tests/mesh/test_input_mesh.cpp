@@ -217,7 +217,7 @@ TEST(InputMesh, ReadsGltfAndWeldsAcrossMeshes) {
 // The contained reader (issue 25): a crash, a blow-up or a hang inside the reader is an error naming the file.
 TEST(ContainedReader, ACrashInTheReaderIsAnErrorNamingTheSignal) {
   const std::string msg = error_of([] {
-    run_contained("mesh.ply", "the mesh reader", {}, []() -> std::string {
+    run_contained("mesh.ply", "the mesh reader", {4, 60}, []() -> std::string {
       std::raise(SIGSEGV);
       return "";
     });
@@ -249,16 +249,17 @@ TEST(ContainedReader, RunningOutOfMemoryOrTimeStopsTheReader) {
 TEST(ContainedReader, AnswersAndErrorsComeBackWhole) {
   std::string big(5 << 20, 0);  // larger than a pipe's buffer
   for (size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>(i * 7919 % 251);
-  EXPECT_EQ(run_contained("x", "the mesh reader", {}, [&] { return big; }), big);
+  const ContainedLimits limits{4, 60};
+  EXPECT_EQ(run_contained("x", "the mesh reader", limits, [&] { return big; }), big);
   try {
-    run_contained("x", "the mesh reader", {}, []() -> std::string { throw Error("a.obj", "line 3", "expected a number"); });
+    run_contained("x", "the mesh reader", limits, []() -> std::string { throw Error("a.obj", "line 3", "expected a number"); });
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.file(), "a.obj");
     EXPECT_EQ(e.place(), "line 3");
     EXPECT_EQ(e.rule(), "expected a number");
   }
-  EXPECT_EQ(error_of([] { run_contained("x", "the mesh reader", {}, []() -> std::string { throw std::runtime_error("boom"); }); }),
+  EXPECT_EQ(error_of([&] { run_contained("x", "the mesh reader", limits, []() -> std::string { throw std::runtime_error("boom"); }); }),
             "x: the mesh reader failed: boom");
 }
 
@@ -273,12 +274,28 @@ TEST(ContainedReader, FilesThatAskForBillionsOfElementsAreRefusedAtOnce) {
   }
 }
 
+TEST(ContainedReader, AFileThatHangsTheReaderIsStoppedAtItsDeadline) {
+  // 101 bytes that send the system's assimp into an endless loop (found by fuzz_mesh): without a time limit of
+  // its own, 10 s for a file this small.
+  ScratchDir dir;
+  const auto ply = dir.write("hang.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                         "element face 1\np 2 3\n");
+  const auto started = std::chrono::steady_clock::now();
+  const std::string msg = error_of([&] { mesh::load_mesh(ply, {1, 1}); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // Some assimp versions refuse it at once instead; either way an error naming the file comes back, promptly.
+  EXPECT_EQ(msg.rfind(ply.string() + ": ", 0), 0u) << msg;
+  EXPECT_LT(seconds, 5);
+}
+
 TEST(ContainedReader, LimitsFromTheEnvironment) {
   ::setenv("SKEIN_READER_GB", "1.5", 1);
   ::setenv("SKEIN_READER_SECONDS", "7", 1);
   const auto limits = ContainedLimits::from_environment();
   EXPECT_EQ(limits.memory_gb, 1.5);
   EXPECT_EQ(limits.seconds, 7);
+  ::unsetenv("SKEIN_READER_SECONDS");
+  EXPECT_EQ(ContainedLimits::from_environment().seconds, 0);  // the reader's default for its file
   ::setenv("SKEIN_READER_GB", "lots", 1);
   EXPECT_EQ(error_of([] { ContainedLimits::from_environment(); }), "environment variable SKEIN_READER_GB: expected a positive number, found 'lots'");
   ::unsetenv("SKEIN_READER_GB");

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -94,15 +96,49 @@ TEST(YarnIo, ObjPolylinesAndTubes) {
   const auto y = tube_yarn();
   relax::write_obj_polylines(y, dir / "y.obj");
   const std::string obj = bytes(dir / "y.obj");
-  EXPECT_EQ(std::count(obj.begin(), obj.end(), 'l'), y.curves() + static_cast<long>(std::count(obj.begin(), obj.end(), 'l')) - y.curves());
-  size_t lines = 0, vertices = 0;
+  // Every segment its own two-point `l` record (Blender 3.4 keeps only the first segment of a longer one),
+  // joining consecutive points of one curve, and closing the closed ones.
+  size_t segments = 0;
+  for (int c = 0; c < y.curves(); ++c) segments += y.curve_size(c) - 1 + (y.closed[c] ? 1 : 0);
+  size_t vertices = 0, objects = 0;
+  std::vector<std::pair<int, int>> lines;
   std::istringstream in(obj);
-  for (std::string line; std::getline(in, line);) lines += line.rfind("l ", 0) == 0, vertices += line.rfind("v ", 0) == 0;
-  EXPECT_EQ(lines, static_cast<size_t>(y.curves()));
+  for (std::string line; std::getline(in, line);) {
+    vertices += line.rfind("v ", 0) == 0;
+    objects += line.rfind("o yarn", 0) == 0;
+    int a = 0, b = 0;
+    char tail = 0;
+    if (line.rfind("l ", 0) == 0) {
+      ASSERT_EQ(std::sscanf(line.c_str(), "l %d %d %c", &a, &b, &tail), 2) << line;
+      lines.emplace_back(a - 1, b - 1);
+    }
+  }
   EXPECT_EQ(vertices, y.points.size());
+  EXPECT_EQ(objects, static_cast<size_t>(y.curves()));
+  ASSERT_EQ(lines.size(), segments);
+  for (const auto& [a, b] : lines) {
+    const int c = static_cast<int>(std::upper_bound(y.curve_start.begin(), y.curve_start.end(), a) - y.curve_start.begin()) - 1;
+    const bool closing = y.closed[c] && a == y.curve_start[c + 1] - 1 && b == y.curve_start[c];
+    EXPECT_TRUE((b == a + 1 && b < y.curve_start[c + 1]) || closing) << a << " " << b;
+  }
   relax::write_tube_obj(y, dir / "t.obj", {6, 2});
   const auto tubes = mesh::load_mesh(dir / "t.obj");  // a mesh any tool reads
   EXPECT_GT(tubes.num_faces(), static_cast<int>(6 * y.points.size()));
+  // Smooth shading: as many normals as vertices, each a unit vector, every face corner naming one.
+  const std::string t = bytes(dir / "t.obj");
+  std::istringstream tin(t);
+  size_t tv = 0, tn = 0;
+  for (std::string line; std::getline(tin, line);) {
+    tv += line.rfind("v ", 0) == 0;
+    if (line.rfind("vn ", 0) == 0) {
+      ++tn;
+      double x = 0, yy = 0, z = 0;
+      std::sscanf(line.c_str(), "vn %lf %lf %lf", &x, &yy, &z);
+      EXPECT_NEAR(x * x + yy * yy + z * z, 1, 1e-4) << line;
+    }
+    if (line.rfind("f ", 0) == 0) EXPECT_EQ(std::count(line.begin(), line.end(), '/'), 8) << line;
+  }
+  EXPECT_EQ(tv, tn);
 }
 
 TEST(YarnIo, StatsCountAndMeasure) {
