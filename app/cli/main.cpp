@@ -873,7 +873,7 @@ int main(int argc, char** argv) {
       const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
       const auto crossing_list = relax::TopologyAuditor(system, audit_deviation).crossings(system.points, q1);
       const long crossings = static_cast<long>(crossing_list.size());
-      const auto links_before = relax::linking_numbers(before), links_after = relax::linking_numbers(after);
+      const auto links_before = relax::linking_numbers(before, audit_deviation), links_after = relax::linking_numbers(after, audit_deviation);
       std::map<std::pair<int, int>, long> lk0, lk1;
       for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
       for (const auto& l : links_after) lk1[{l.a, l.b}] = l.number;

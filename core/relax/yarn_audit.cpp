@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "relax/segment_distance.hpp"
+#include "relax/segment_distance.hpp"
 
 namespace skein::relax {
 
@@ -262,34 +263,88 @@ double linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d
   return total / (4 * kPi);
 }
 
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, int samples) {
+namespace {
+
+/// A closed Catmull-Rom curve as a polyline of `per_segment` samples per segment, and the bound on how far the
+/// polyline strays from the curve: max |y''| / 8 per_segment² (the chord error of each piece).
+struct SampledLoop {
+  std::vector<Vector3d> line;
+  double error = 0;
+  Eigen::AlignedBox3d box;
+};
+
+SampledLoop sample_loop(const mesh::YarnCurves& yarn, int c, int per_segment) {
+  SampledLoop out;
+  const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
+  const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + ((k % n) + n) % n]; };
+  double curvature = 0;  // max |y''| over the curve; y'' is linear on a segment, so its ends bound it
+  for (int k = 0; k < n; ++k) {
+    const Vector3d d0 = 2 * point(k - 1) - 5 * point(k) + 4 * point(k + 1) - point(k + 2);   // y''(0)
+    const Vector3d d1 = -point(k - 1) + 4 * point(k) - 5 * point(k + 1) + 2 * point(k + 2);  // y''(1)
+    curvature = std::max({curvature, d0.norm(), d1.norm()});
+    for (int m = 0; m < per_segment; ++m) {
+      const double t = static_cast<double>(m) / per_segment, t2 = t * t, t3 = t2 * t;
+      const Vector3d p = 0.5 * ((-t3 + 2 * t2 - t) * point(k - 1) + (3 * t3 - 5 * t2 + 2) * point(k) + (-3 * t3 + 4 * t2 + t) * point(k + 1) +
+                                (t3 - t2) * point(k + 2));
+      out.line.push_back(p);
+      out.box.extend(p);
+    }
+  }
+  out.error = curvature / (8.0 * per_segment * per_segment);
+  out.box.extend(out.box.min() - Vector3d::Constant(out.error));
+  out.box.extend(out.box.max() + Vector3d::Constant(out.error));
+  return out;
+}
+
+/// Whether two closed polylines come closer than `threshold` anywhere (edge to edge); edges whose boxes are
+/// farther apart than that are skipped without a distance.
+bool polylines_closer_than(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b, double threshold) {
+  for (size_t i = 0; i < a.size(); ++i) {
+    const Vector3d& a0 = a[i];
+    const Vector3d& a1 = a[(i + 1) % a.size()];
+    const Vector3d lo = a0.cwiseMin(a1) - Vector3d::Constant(threshold), hi = a0.cwiseMax(a1) + Vector3d::Constant(threshold);
+    for (size_t j = 0; j < b.size(); ++j) {
+      const Vector3d& b0 = b[j];
+      const Vector3d& b1 = b[(j + 1) % b.size()];
+      if ((b0.cwiseMax(b1).array() < lo.array()).any() || (b0.cwiseMin(b1).array() > hi.array()).any()) continue;
+      if (segment_distance(a0, a1, b0, b1) < threshold) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
   std::vector<int> closed;
   for (int c = 0; c < yarn.curves(); ++c)
     if (yarn.closed[c] && yarn.curve_size(c) > 2) closed.push_back(c);
-  // Closed curves as polylines through the Catmull-Rom samples.
-  std::vector<std::vector<Vector3d>> lines(closed.size());
-  std::vector<Eigen::AlignedBox3d> boxes(closed.size());
+  // Each closed curve first with enough samples to stay within `deviation` r of itself (at least 4 a segment).
+  const double tolerance = deviation * (yarn.radius > 0 ? yarn.radius : 1.0);
+  std::vector<int> per_segment(closed.size(), 4);
+  std::vector<SampledLoop> loops(closed.size());
   for (size_t i = 0; i < closed.size(); ++i) {
-    const int c = closed[i], begin = yarn.curve_start[c], n = yarn.curve_size(c);
-    const auto point = [&](int k) { return yarn.points[begin + ((k % n) + n) % n]; };
-    for (int k = 0; k < n; ++k)
-      for (int m = 0; m < samples; ++m) {
-        const double t = static_cast<double>(m) / samples, t2 = t * t, t3 = t2 * t;
-        const Vector3d p = 0.5 * ((-t3 + 2 * t2 - t) * point(k - 1) + (3 * t3 - 5 * t2 + 2) * point(k) +
-                                  (-3 * t3 + 4 * t2 + t) * point(k + 1) + (t3 - t2) * point(k + 2));
-        lines[i].push_back(p);
-        boxes[i].extend(p);
-      }
+    loops[i] = sample_loop(yarn, closed[i], 4);
+    const int m = static_cast<int>(std::ceil(std::sqrt(16 * loops[i].error / tolerance)));  // the error goes as 1/m², 4² at m = 4
+    if (m > 4) loops[i] = sample_loop(yarn, closed[i], per_segment[i] = std::min(m, kMaxLinkingSamples));
   }
   std::vector<std::pair<int, int>> candidates;
   for (size_t i = 0; i < closed.size(); ++i)
     for (size_t j = i + 1; j < closed.size(); ++j)
-      if (boxes[i].intersects(boxes[j])) candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      if (loops[i].box.intersects(loops[j].box)) candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
   std::vector<Linking> out(candidates.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (long k = 0; k < static_cast<long>(candidates.size()); ++k) {
     const auto [i, j] = candidates[k];
-    out[k] = {closed[i], closed[j], std::lround(linking_number(lines[i], lines[j]))};
+    // The polylines' linking number is the curves' when neither polyline strays from its curve by as much as
+    // half their gap: moving each polyline onto its curve then never makes them meet. Refine until it holds.
+    SampledLoop a = loops[i], b = loops[j];
+    for (int ma = per_segment[i], mb = per_segment[j];;) {
+      if (!polylines_closer_than(a.line, b.line, 2 * (a.error + b.error)) || (ma >= kMaxLinkingSamples && mb >= kMaxLinkingSamples)) break;
+      if (a.error >= b.error && ma < kMaxLinkingSamples) a = sample_loop(yarn, closed[i], ma = std::min(2 * ma, kMaxLinkingSamples));
+      else b = sample_loop(yarn, closed[j], mb = std::min(2 * mb, kMaxLinkingSamples));
+    }
+    out[k] = {closed[i], closed[j], std::lround(linking_number(a.line, b.line))};
   }
   return out;
 }

@@ -49,11 +49,15 @@ bool edges_meet_during(const Eigen::Vector3d a0[2], const Eigen::Vector3d a1[2],
 double linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
 
 /// Linking numbers between every two closed curves of `yarn` whose bounding boxes overlap (curves with
-/// apart boxes have linking number 0), each curve sampled `samples` times per segment.
+/// apart boxes have linking number 0). Each curve is sampled finely enough to stay within `deviation` r of
+/// itself (at least 4 samples a segment), and each pair more finely until neither polyline strays from its
+/// curve by half the gap between them, so that the polylines' linking number is the curves' (up to
+/// kMaxLinkingSamples a segment: curves closer than that resolves are as good as touching).
 struct Linking {
   int a = 0, b = 0;
   long number = 0;
 };
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, int samples = 4);
+inline constexpr int kMaxLinkingSamples = 1024;
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation = 0.1);
 
 }  // namespace skein::relax
