@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
+#include "stitchmesh/written_pattern.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -82,6 +83,7 @@ int Pattern::stitches() const {
 }
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
+  if (is_written_pattern(text)) return parse_written_pattern(text, source);
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();
   std::istringstream in(text);
@@ -106,7 +108,8 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
       if (f == "knit") p.format = PatternFormat::Knit;
       else if (f == "tiles") p.format = PatternFormat::Tiles;
       else if (f == "woven") p.format = PatternFormat::Woven;
-      else throw Error(source, at(line_no, tokens[0].column), "expected the format first: 'format knit', 'format tiles' or 'format woven'");
+      else throw Error(source, at(line_no, tokens[0].column), "expected the format first: 'format knit', 'format tiles' or 'format woven', or written instructions that start "
+                                                            "'Row 1: ...' or 'Rnd 1: ...' (patterns/FORMAT.md)");
       have_format = true;
       continue;
     }
@@ -167,18 +170,23 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     p.rows.push_back(std::move(row));
     row_line.push_back(it->line);
   }
+  check_stacking(p, row_line, source);
+  return p;
+}
+
+void check_stacking(const Pattern& p, const std::vector<int>& row_line, const std::string& source) {
   // Every row takes the loops the row below it made; the first row takes the last row's, so the repeat stacks.
+  const auto at = [](int line) { return "line " + std::to_string(line); };
   const int n = static_cast<int>(p.rows.size());
   for (int r = 0; r < n; ++r) {
     const int above = (r + 1) % n, made = loops_made(p.rows[r]), taken = loops_taken(p.rows[above]);
     if (made == taken) continue;
     if (above == 0)
-      throw Error(source, at(row_line[0], 0), "the first row takes " + std::to_string(taken) + " loops but the last row (line " +
-                                                  std::to_string(row_line[r]) + ") makes " + std::to_string(made) + ", so the repeat cannot stack");
-    throw Error(source, at(row_line[above], 0), "this row takes " + std::to_string(taken) + " loops but the row below it (line " +
-                                                    std::to_string(row_line[r]) + ") makes " + std::to_string(made));
+      throw Error(source, at(row_line[0]), "the first row takes " + std::to_string(taken) + " loops but the last row (line " +
+                                               std::to_string(row_line[r]) + ") makes " + std::to_string(made) + ", so the repeat cannot stack");
+    throw Error(source, at(row_line[above]), "this row takes " + std::to_string(taken) + " loops but the row below it (line " +
+                                                 std::to_string(row_line[r]) + ") makes " + std::to_string(made));
   }
-  return p;
 }
 
 Pattern read_pattern(const std::filesystem::path& file) {

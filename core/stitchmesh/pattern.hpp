@@ -48,6 +48,10 @@ Pattern read_pattern(const std::filesystem::path& file);
 /// The same from text; `source` names it in errors.
 Pattern parse_pattern(const std::string& text, const std::string& source);
 
+/// Throws skein::Error unless every knit row takes the loops the row below it makes, and the first row the
+/// loops the last row makes (the repeat stacks); `row_line[r]` is the line of rows[r] in `source`.
+void check_stacking(const Pattern& pattern, const std::vector<int>& row_line, const std::string& source);
+
 /// A flat stitch mesh in the z = 0 plane of a knit pattern repeated `across` times along the course and
 /// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Cables become cable marks on the course
 /// edges above their stitches (none in the top row: nothing is above it). Valid by construction.

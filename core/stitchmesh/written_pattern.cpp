@@ -1,0 +1,530 @@
+#include "stitchmesh/written_pattern.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <numeric>
+#include <regex>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "stitchmesh/stitch_types.hpp"
+
+namespace skein::mesh {
+namespace {
+
+constexpr size_t kLongestLine = 4096;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+/// One thing a row's instructions say, in the order written.
+struct Item {
+  enum Kind { Stitch, Cable, Fill, Star, Repeat, Group } kind = Stitch;
+  std::string type;        ///< Stitch: the skein stitch type as seen from the front (after the side is applied); Fill: "k" or "p"
+  std::string written;     ///< the abbreviation as written, for errors
+  int column = 0;          ///< 1-based, in the line
+  int over = 0, under = 0, order = 1;  ///< Cable, as seen from the front (PatternCable)
+  int times = 1;           ///< Group
+  std::vector<Item> items; ///< Group
+};
+
+Item make(Item::Kind kind, const std::string& written, int column, const std::string& type = "") {
+  Item item;
+  item.kind = kind;
+  item.written = written;
+  item.column = column;
+  item.type = type;
+  return item;
+}
+
+// The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
+const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
+                              "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
+const char* const kNotModelled[] = {"kfb", "pfb", "m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "k3tog", "p3tog", "sssk", "sssp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
+
+int edit_distance(const std::string& a, const std::string& b) {
+  std::vector<int> row(b.size() + 1);
+  std::iota(row.begin(), row.end(), 0);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    int diagonal = row[0];
+    row[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const int next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = row[j];
+      row[j] = next;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string suggestions(const std::string& word) {
+  std::vector<std::pair<int, std::string>> ranked;
+  for (const char* k : kKnown) ranked.emplace_back(edit_distance(word, k), k);
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::string out;
+  for (size_t i = 0; i < 3 && i < ranked.size(); ++i) out += (out.empty() ? "'" : ", '") + ranked[i].second + "'";
+  return out;
+}
+
+/// A centred double decrease (sk2p, s2kp, cdd) before pair_lace gives it a model.
+const std::string kCentred = "centred double decrease";
+
+/// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over and the decrease that pays for it, as
+/// written on a right-side row: "yo, ssk" is `ys`, "k2tog, yo" is `2u`, "yo, sk2p, yo" is `y3y`. A yarn-over
+/// alone stays Yuksel's `y` (a face over one loop below).
+void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
+  std::vector<Item> out;
+  const auto is = [&](size_t i, const char* written) { return i < items.size() && items[i].written == written; };
+  for (size_t i = 0; i < items.size(); ++i) {
+    Item item = items[i];
+    if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
+      item.type = "y3y";
+      item.written = "yo, " + items[i + 1].written + ", yo";
+      i += 2;
+    } else if (is(i, "yo") && is(i + 1, "ssk")) {
+      item.type = "ys";
+      item.written = "yo, ssk";
+      ++i;
+    } else if (is(i, "k2tog") && is(i + 1, "yo")) {
+      item.type = "2u";
+      item.written = "k2tog, yo";
+      ++i;
+    } else if (item.type == kCentred) {
+      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
+                  "'" + item.written + "' has a stitch model only between two yarn-overs ('yo, " + item.written + ", yo', Leaf's y3y)");
+    }
+    out.push_back(item);
+  }
+  items = std::move(out);
+}
+
+/// Reads one row's instructions (`text` lower-cased, starting at column `offset` + 1 of its line).
+class InstructionReader {
+public:
+  InstructionReader(const std::string& text, int offset, bool right_side, const std::string& source, int line)
+      : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line) {}
+
+  std::vector<Item> read() {
+    std::vector<Item> items = sequence(false);
+    return items;
+  }
+
+private:
+  [[noreturn]] void fail(size_t at, const std::string& rule) const {
+    throw Error(m_source, "line " + std::to_string(m_line) + ", column " + std::to_string(m_offset + static_cast<int>(at) + 1), rule);
+  }
+  bool match(const char* pattern, std::smatch& m) {
+    const std::regex re(pattern, std::regex::icase);
+    const auto begin = m_text.cbegin() + static_cast<long>(m_pos);
+    if (!std::regex_search(begin, m_text.cend(), m, re, std::regex_constants::match_continuous)) return false;
+    const size_t end = m_pos + static_cast<size_t>(m.length(0));
+    if (end < m_text.size() && std::isalnum(static_cast<unsigned char>(m_text[end])) && std::isalnum(static_cast<unsigned char>(m_text[end - 1])))
+      return false;  // a word must end where the abbreviation does
+    return true;
+  }
+  void skip_separators() {
+    while (m_pos < m_text.size() && (std::isspace(static_cast<unsigned char>(m_text[m_pos])) || m_text[m_pos] == ',' || m_text[m_pos] == ';' ||
+                                     m_text[m_pos] == '.'))
+      ++m_pos;
+  }
+  Item stitch(size_t at, const std::string& written, const std::string& rs, const std::string& ws) {
+    Item item;
+    item.column = m_offset + static_cast<int>(at) + 1;
+    item.written = written;
+    const std::string& type = m_rs ? rs : ws;
+    if (type.empty())
+      fail(at, "'" + written + "' on a " + (m_rs ? "right" : "wrong") + "-side row has no stitch model yet" +
+                   (m_rs ? "" : " (work it from the right side, or write the row from the right side)"));
+    item.type = type;
+    return item;
+  }
+  void add(std::vector<Item>& items, Item item, int count) {
+    for (int i = 0; i < count; ++i) items.push_back(item);
+  }
+
+  std::vector<Item> sequence(bool in_group) {
+    std::vector<Item> items;
+    for (;;) {
+      skip_separators();
+      if (m_pos >= m_text.size()) {
+        if (in_group) fail(m_pos, "a '[' or '(' group is not closed");
+        return items;
+      }
+      const size_t at = m_pos;
+      std::smatch m;
+      if (m_text[m_pos] == '*') {
+        ++m_pos;
+        items.push_back(make(Item::Star, "*", static_cast<int>(at) + m_offset + 1));
+      } else if (match(R"(rep(?:eat)?\.?\s+from\s+\*(?:\s+(?:to\s+end|across|around|to\s+last\s+(\d+)\s+(?:sts?|stitch(?:es)?)))?)", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        items.push_back(make(Item::Repeat, "rep from *", static_cast<int>(at) + m_offset + 1));
+      } else if (m_text[m_pos] == '[' || m_text[m_pos] == '(') {
+        ++m_pos;
+        Item g = make(Item::Group, "[", static_cast<int>(at) + m_offset + 1);
+        g.items = sequence(true);
+        skip_separators();
+        std::smatch times;
+        if (match(R"(\s*(?:x\s*(\d+)|(\d+)\s*(?:times|x)))", times)) {
+          m_pos += static_cast<size_t>(times.length(0));
+          g.times = std::stoi(times[1].matched ? times[1].str() : times[2].str());
+        } else if (match(R"(\s*(?:once))", times)) {
+          m_pos += static_cast<size_t>(times.length(0));
+        } else {
+          fail(m_pos, "expected how many times the group is worked after it ('3 times' or 'x3')");
+        }
+        if (g.times < 1 || g.times > 1000) fail(at, "a group is worked 1 to 1000 times");
+        items.push_back(std::move(g));
+      } else if (m_text[m_pos] == ']' || m_text[m_pos] == ')') {
+        if (!in_group) fail(m_pos, "a ']' or ')' closes no group");
+        ++m_pos;
+        return items;
+      } else if (match(R"((knit|purl|k|p)\s+to\s+end)", m) || match(R"((knit|purl))", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        const bool knit = m[1].str()[0] == 'k';
+        items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
+      } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(wyib|wyif))?)", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        const int n = m[1].length() ? std::stoi(m[1].str()) : 1;
+        const bool front = m[2].matched && m[2].str() == "wyif";  // with the yarn toward the knitter
+        // The float lies on the side the yarn is held: behind the fabric seen from the front is `s`, in front `sk`.
+        const bool float_behind = front != m_rs;
+        add(items, stitch(at, m.str(0), float_behind ? "s" : "sk", float_behind ? "s" : "sk"), n);
+      } else if (match(R"(c(\d+)(f|b))", m) || match(R"((\d)/(\d)\s*(lc|rc|lt|rt))", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
+        int a = 0, b = 0, order = 1;
+        if (m.str(0)[0] == 'c') {
+          const int n = std::stoi(m[1].str());
+          if (n % 2 != 0 || n < 2 || n > 6) fail(at, "'" + m.str(0) + "': cables of 2, 4 or 6 stitches (half over half) have models");
+          a = b = n / 2;
+          // CnB: the left half (seen from the front) crosses right, in front; CnF: the right half crosses left in
+          // front, so the left half crosses right behind.
+          order = m[2].str() == "b" ? 1 : -1;
+        } else {
+          const int x = std::stoi(m[1].str()), y = std::stoi(m[2].str());
+          const bool right = m[3].str()[0] == 'r';
+          // A/B RC: the A stitches travel right in front; A/B LC: the A stitches travel left in front, so the B
+          // stitches on their left cross right behind.
+          a = right ? x : y;
+          b = right ? y : x;
+          order = right ? 1 : -1;
+        }
+        if (a < 1 || a > 3 || b < 1 || b > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
+        Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);
+        c.over = a;
+        c.under = b;
+        c.order = order;
+        items.push_back(c);
+      } else if (match(R"(k2tog)", m)) {
+        m_pos += 5;
+        items.push_back(stitch(at, "k2tog", "d12k", "d12p"));
+      } else if (match(R"(p2tog)", m)) {
+        m_pos += 5;
+        items.push_back(stitch(at, "p2tog", "d12p", "d12k"));
+      } else if (match(R"(sk2po?|s2kp2?|cdd)", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
+      } else if (match(R"(ssk)", m)) {
+        m_pos += 3;
+        items.push_back(stitch(at, "ssk", "d21k", "d21p"));
+      } else if (match(R"(ssp)", m)) {
+        m_pos += 3;
+        items.push_back(stitch(at, "ssp", "d21p", "d21k"));
+      } else if (match(R"(yo(\d*))", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        add(items, stitch(at, "yo", "y", "y"), m[1].length() ? std::stoi(m[1].str()) : 1);
+      } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        const bool knit = m[1].str() == "k";
+        add(items, stitch(at, m.str(0), knit ? "x" : "", knit ? "" : "x"), m[2].length() ? std::stoi(m[2].str()) : 1);
+      } else if (match(R"((k|p)(\d*))", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        const bool knit = m[1].str() == "k";
+        const int n = m[2].length() ? std::stoi(m[2].str()) : 1;
+        if (n < 1 || n > 1000) fail(at, "'" + m.str(0) + "': 1 to 1000 stitches");
+        add(items, stitch(at, m.str(0), knit ? "k" : "p", knit ? "p" : "k"), n);
+      } else {
+        size_t end = m_pos;
+        while (end < m_text.size() && !std::isspace(static_cast<unsigned char>(m_text[end])) && m_text[end] != ',' && m_text[end] != ';' &&
+               m_text[end] != '.' && m_text[end] != ']' && m_text[end] != ')')
+          ++end;
+        const std::string word = m_text.substr(m_pos, end - m_pos);
+        if (std::find(std::begin(kNotModelled), std::end(kNotModelled), word) != std::end(kNotModelled))
+          fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet");
+        fail(at, "unknown abbreviation '" + word + "'; did you mean " + suggestions(word) + "? (patterns/FORMAT.md lists what is read)");
+      }
+    }
+  }
+
+  const std::string& m_text;
+  int m_offset;
+  bool m_rs;
+  std::string m_source;
+  int m_line;
+  size_t m_pos = 0;
+};
+
+/// Groups expanded, in the order written.
+void flatten(const std::vector<Item>& items, std::vector<Item>& out) {
+  for (const auto& item : items) {
+    if (item.kind != Item::Group) {
+      out.push_back(item);
+      continue;
+    }
+    for (int t = 0; t < item.times; ++t) flatten(item.items, out);
+  }
+}
+
+int taken(const Item& item) {
+  return item.kind == Item::Cable ? item.over + item.under : item.kind == Item::Fill ? 1 : find_stitch_type(item.type)->bottom;
+}
+int loops_taken(const std::vector<Item>& items) {
+  int n = 0;
+  for (const auto& item : items) n += taken(item);
+  return n;
+}
+
+/// One row as written: the stitches before its `*` repeat, the repeat, and those after (the edge stitches).
+/// A row without `*` is all repeat; `knit` / `purl` is a repeat of one stitch.
+struct WrittenRow {
+  std::vector<Item> before, repeat, after;  ///< flat: no groups, stars or repeats; stitches as seen from the front
+  bool right_side = true;
+  int line = 0;
+  int edges() const { return loops_taken(before) + loops_taken(after); }
+  /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
+  int left_edge() const { return loops_taken(right_side ? after : before); }
+  /// The whole row `copies` repeats wide, left to right as seen from the front.
+  std::vector<Item> front(int copies) const {
+    std::vector<Item> row = before;
+    for (int c = 0; c < copies; ++c) row.insert(row.end(), repeat.begin(), repeat.end());
+    row.insert(row.end(), after.begin(), after.end());
+    if (right_side) std::reverse(row.begin(), row.end());
+    return row;
+  }
+};
+
+WrittenRow split_row(std::vector<Item> written, bool right_side, int line, const std::string& source) {
+  const std::string where = "line " + std::to_string(line);
+  std::vector<Item> flat;
+  flatten(written, flat);
+  WrittenRow row;
+  row.right_side = right_side;
+  row.line = line;
+  const auto star = std::find_if(flat.begin(), flat.end(), [](const Item& i) { return i.kind == Item::Star; });
+  const auto rep = std::find_if(flat.begin(), flat.end(), [](const Item& i) { return i.kind == Item::Repeat; });
+  if ((star == flat.end()) != (rep == flat.end()))
+    throw Error(source, where, star == flat.end() ? "'rep from *' without a '*' before it" : "a '*' without 'rep from *' after it");
+  if (star != flat.end()) {
+    if (rep < star) throw Error(source, where + ", column " + std::to_string(rep->column), "'rep from *' comes before its '*'");
+    row.before.assign(flat.begin(), star);
+    row.repeat.assign(star + 1, rep);
+    row.after.assign(rep + 1, flat.end());
+  } else {
+    row.repeat = flat;
+  }
+  for (auto* part : {&row.before, &row.repeat, &row.after})
+    if (right_side) pair_lace(*part, source, line);
+  for (const auto* part : {&row.before, &row.repeat, &row.after})
+    for (const auto& item : *part) {
+      if (item.kind == Item::Star || item.kind == Item::Repeat) throw Error(source, where, "holds more than one '*' repeat; write one repeat per row");
+      if (item.kind == Item::Fill && (flat.size() != 1))
+        throw Error(source, where + ", column " + std::to_string(item.column), "'knit', 'purl', 'k to end' or 'p to end' stands alone in its row");
+    }
+  if (loops_taken(row.repeat) < 1) throw Error(source, where, "its repeat takes no loop from the row below");
+  return row;
+}
+
+struct RowHeader {
+  int first = 0, last = 0;
+  bool round = false;
+  int side = 0;       ///< +1 RS, -1 WS, 0 not said
+  size_t colon = 0;   ///< where the instructions start
+};
+
+bool row_header(const std::string& line, RowHeader& h) {
+  static const std::regex re(R"(^\s*(rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?\s*(?:\(\s*(rs|ws)\s*\))?\s*[:.])", std::regex::icase);
+  std::smatch m;
+  if (!std::regex_search(line, m, re)) return false;
+  h.round = lower(m[1].str())[1] == 'n' || lower(m[1].str()).rfind("round", 0) == 0;
+  h.first = std::stoi(m[2].str());
+  h.last = m[3].matched ? std::stoi(m[3].str()) : h.first;
+  h.side = m[4].matched ? (lower(m[4].str()) == "rs" ? 1 : -1) : 0;
+  h.colon = static_cast<size_t>(m.length(0));
+  return true;
+}
+
+}  // namespace
+
+bool is_written_pattern(const std::string& text) {
+  std::istringstream in(text);
+  RowHeader h;
+  for (std::string line; std::getline(in, line);) {
+    if (line.size() > kLongestLine) line.resize(200);  // a heading is short; the reader says what is wrong with the rest
+    const auto hash = line.find('#');
+    const std::string content = line.substr(0, hash);
+    if (content.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string l = lower(content);
+    static const std::regex format(R"(^\s*format\s+(\w+)\s*$)");
+    std::smatch m;
+    if (std::regex_search(l, m, format)) return m[1].str() == "written";
+    if (row_header(content, h)) return true;
+  }
+  return false;
+}
+
+Pattern parse_written_pattern(const std::string& text, const std::string& source) {
+  Pattern p;
+  p.name = std::filesystem::path(source).stem().string();
+  p.format = PatternFormat::Knit;
+  std::istringstream in(text);
+  std::vector<WrittenRow> rows;  // Row 1 first
+  struct Instructions {
+    std::string body;  ///< lower-cased, from the heading's colon on
+    int offset = 0, line = 0;
+    bool right_side = true;
+  };
+  std::vector<Instructions> said;  // per row: what was written for it
+  bool round = false;
+  // Row `number` (1-based, the next one) worked from instructions: on its own side.
+  const auto work = [&](const Instructions& w) {
+    InstructionReader reader(w.body, w.offset, w.right_side, source, w.line);
+    rows.push_back(split_row(reader.read(), w.right_side, w.line, source));
+    said.push_back(w);
+  };
+  // Rows a..b once more as the next rows: "Rep Row 1" on a wrong-side row is worked from the wrong side.
+  const auto again = [&](int a, int b, int line) {
+    if (a < 1 || b < a || b > static_cast<int>(said.size()))
+      throw Error(source, "line " + std::to_string(line), "repeats rows " + std::to_string(a) + "-" + std::to_string(b) + ", which are not all written above it");
+    for (int k = a; k <= b; ++k) {
+      Instructions w = said[k - 1];
+      const int number = static_cast<int>(rows.size()) + 1;
+      if (!round && (number - k) % 2 != 0) w.right_side = !w.right_side;
+      work(w);
+    }
+  };
+  int line_no = 0;
+  bool started = false;
+  std::string description;
+  for (std::string raw; std::getline(in, raw);) {
+    ++line_no;
+    // std::regex recurses per character: a bound on the line keeps a hostile file from the stack's end.
+    if (raw.size() > kLongestLine)
+      throw Error(source, "line " + std::to_string(line_no), "is longer than " + std::to_string(kLongestLine) + " characters");
+    std::string line = raw;
+    if (const auto hash = line.find('#'); hash != std::string::npos) {
+      const std::string comment = line.substr(hash + 1);
+      const auto b = comment.find_first_not_of(" \t");
+      const std::string c = b == std::string::npos ? "" : comment.substr(b);
+      for (const auto& [key, field] : {std::pair{"name:", &p.name}, std::pair{"source:", &p.note}})
+        if (c.rfind(key, 0) == 0) {
+          *field = c.substr(std::string(key).size());
+          field->erase(0, field->find_first_not_of(" \t"));
+          field->erase(field->find_last_not_of(" \t\r") + 1);
+        }
+      line = line.substr(0, hash);
+    }
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    RowHeader h;
+    static const std::regex again_line(R"(^\s*rep(?:eat)?\.?\s+rows?\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?(?:\s+for\s+(?:the\s+)?patt(?:ern)?)?\s*\.?\s*$)",
+                                        std::regex::icase);
+    std::smatch again_m;
+    if (started && std::regex_search(line, again_m, again_line)) {
+      // "Rep Rows 1 and 2 (for pattern)." on its own line: those rows once more, as the next rows.
+      const int a = std::stoi(again_m[1].str());
+      again(a, again_m[2].matched ? std::stoi(again_m[2].str()) : a, line_no);
+      continue;
+    }
+    if (!row_header(line, h)) {
+      if (lower(line).find("format written") != std::string::npos && !started) continue;
+      if (!started) {  // a description before the rows: "Multiple of 4 sts plus 2", "Cast on ..."
+        description += (description.empty() ? "" : " ") + line.substr(line.find_first_not_of(" \t"));
+        continue;
+      }
+      throw Error(source, "line " + std::to_string(line_no), "expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
+    }
+    if (started && h.round != round) throw Error(source, "line " + std::to_string(line_no), "mixes rows (worked flat) and rounds (in the round)");
+    round = h.round;
+    started = true;
+    const int expected = static_cast<int>(rows.size()) + 1;
+    if (h.first != expected || h.last < h.first)
+      throw Error(source, "line " + std::to_string(line_no),
+                  std::string(round ? "round" : "row") + " " + std::to_string(h.first) + (h.last != h.first ? "-" + std::to_string(h.last) : "") +
+                      " comes where " + (round ? "round " : "row ") + std::to_string(expected) + " was expected (rows are numbered from 1, in order)");
+    if (h.last - h.first > 1000) throw Error(source, "line " + std::to_string(line_no), "more than 1000 rows at once");
+    std::string body = lower(line.substr(h.colon));
+    // "Rep Rows 1 and 2." as the instructions: those rows again, as they were.
+    std::smatch m;
+    for (int r = h.first; r <= h.last; ++r) {
+      const bool right_side = round || (h.side != 0 ? h.side > 0 : r % 2 == 1);
+      if (std::regex_search(body, m, again_line)) {
+        const int a = std::stoi(m[1].str()), b = m[2].matched ? std::stoi(m[2].str()) : a;
+        if (b - a > h.last - r) throw Error(source, "line " + std::to_string(line_no), "repeats more rows than its heading names");
+        again(a, b, line_no);
+        r += b - a;
+        continue;
+      }
+      work({body, static_cast<int>(h.colon), line_no, right_side});
+    }
+  }
+  if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
+  if (p.note.empty()) p.note = description;
+
+  // One repeat as wide as every row's: the least common multiple of their repeats' widths. Each row is laid out
+  // whole, edge stitches and all, at one width, as seen from the front; the repeat is the window of that width
+  // that lies inside every row's repeats and cuts no stitch (a decrease or a cable) in two.
+  int width = 1, edges = rows[0].edges(), left = 0;
+  for (const auto& row : rows) {
+    width = std::lcm(width, loops_taken(row.repeat));
+    if (width > 1000) throw Error(source, "line " + std::to_string(row.line), "makes the repeat wider than 1000 stitches");
+    left = std::max(left, row.left_edge());
+  }
+  const int total = edges + 3 * width;
+  std::vector<std::vector<Item>> whole;
+  for (const auto& row : rows) {
+    const int room = total - row.edges(), w = loops_taken(row.repeat);
+    if (room < 0 || room % w != 0)
+      throw Error(source, "line " + std::to_string(row.line),
+                  "its edge stitches (" + std::to_string(row.edges()) + ") and repeat of " + std::to_string(w) + " do not fill the width of the first row's (" +
+                      std::to_string(edges) + " edge stitches and repeats of " + std::to_string(loops_taken(rows[0].repeat)) + ")");
+    whole.push_back(row.front(room / w));
+  }
+  const auto cuts = [&](const std::vector<Item>& row, int at) {  // does a stitch take loops on both sides of `at`?
+    int x = 0;
+    for (const auto& item : row) {
+      if (x < at && x + taken(item) > at) return true;
+      x += taken(item);
+    }
+    return false;
+  };
+  int start = -1;
+  for (int c = left; c < left + width && start < 0; ++c)
+    if (std::none_of(whole.begin(), whole.end(), [&](const auto& row) { return cuts(row, c) || cuts(row, c + width); })) start = c;
+  if (start < 0) throw Error(source, "", "no window of " + std::to_string(width) + " stitches cuts every row between stitches");
+  std::vector<int> row_line;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    std::vector<std::string> types;
+    int x = 0;
+    for (const auto& item : whole[r]) {
+      const int here = x;
+      x += taken(item);
+      if (here < start || here >= start + width) continue;
+      if (item.kind == Item::Cable) {
+        int made = 0;
+        for (const auto& t : types) made += find_stitch_type(t)->top;
+        p.cables.push_back({static_cast<int>(p.rows.size()), made, item.over, item.under, item.order});
+        types.insert(types.end(), item.over + item.under, "k");
+      } else {
+        types.push_back(item.type);
+      }
+    }
+    p.rows.push_back(std::move(types));
+    row_line.push_back(rows[r].line);
+  }
+  check_stacking(p, row_line, source);
+  return p;
+}
+
+}  // namespace skein::mesh

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/written_pattern.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using skein::testing::error_of;
+
+namespace {
+/// The two repeats make the same fabric: tiled to a common size, one equals the other shifted (rows and
+/// columns, cyclically), cables included. For patterns of one-loop stitches.
+bool same_fabric(const mesh::Pattern& a, const mesh::Pattern& b) {
+  const int h = std::lcm(a.height(), b.height()), w = std::lcm(a.width(), b.width());
+  const auto cell = [](const mesh::Pattern& p, int r, int c) {
+    const int rr = r % p.height(), cc = c % p.width();
+    for (const auto& cable : p.cables)
+      if (cable.row == rr && cc >= cable.first_loop && cc < cable.first_loop + cable.over + cable.under)
+        return "cable" + std::to_string(cable.over) + "x" + std::to_string(cable.under) + (cable.order > 0 ? "+" : "-") + std::to_string(cc - cable.first_loop);
+    return p.rows[rr][cc];
+  };
+  for (int dr = 0; dr < h; ++dr)
+    for (int dc = 0; dc < w; ++dc) {
+      bool same = true;
+      for (int r = 0; r < h && same; ++r)
+        for (int c = 0; c < w && same; ++c) same = cell(a, r, c) == cell(b, (r + dr) % h, (c + dc) % w);
+      if (same) return true;
+    }
+  return false;
+}
+std::string rows_text(const mesh::Pattern& p) {  // bottom row first
+  std::string out;
+  for (const auto& row : p.rows) {
+    for (size_t i = 0; i < row.size(); ++i) out += (i ? " " : "") + row[i];
+    out += " / ";
+  }
+  return out;
+}
+mesh::Pattern bundled(const std::string& name) { return mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/" + name + ".knit"); }
+}  // namespace
+
+TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"stockinette", "Row 1 (RS): Knit.\nRow 2 (WS): Purl.\n"},
+      {"stockinette", "Rnd 1: K.\n"},
+      {"garter", "Row 1: Knit.\nRow 2: Knit.\n"},
+      {"garter", "Rnd 1: Knit.\nRnd 2: Purl.\n"},
+      {"rib-1x1", "Multiple of 2 sts plus 1.\nRow 1 (RS): K1, *p1, k1; rep from * to end.\nRow 2: P1, *k1, p1; rep from * to end.\n"},
+      {"rib-2x2", "Multiple of 4 sts plus 2.\nRow 1 (RS): K2, *p2, k2; rep from * to end.\nRow 2: P2, *k2, p2; rep from * to end.\n"},
+      {"rib-2x2", "Rnd 1: *K2, P2; rep from * around.\n"},
+      {"seed", "Multiple of 2 sts plus 1.\nRow 1: K1, *p1, k1; rep from * to end.\nRep Row 1.\n"},
+      {"moss", "Multiple of 2 sts.\nRows 1 and 2: *K1, p1; rep from * to end.\nRows 3 and 4: *P1, k1; rep from * to end.\n"},
+      {"honeycomb", "Multiple of 4 sts.\nRow 1 (RS): *Sl1 wyib, k3; rep from *.\nRow 2: Purl.\nRow 3: K2, *sl1 wyib, k3; rep from * to last 2 sts, k2.\n"
+                    "Row 4: Purl.\n"},
+      {"honeycomb", "Rnd 1: [k3, sl1 wyib] 3 times.\nRnd 2: knit.\nRnd 3: k1, sl1, k2.\nRnd 4: K to end.\n"},
+      {"slip-rib", "Row 1 (RS): *sl 1 pwise wyib, k3; rep from * to end.\nRow 2 (WS): *p3, k1; rep from * to end.\n"},
+      {"cable-4", "Panel of 8 sts.\nRow 1 (RS): P2, C4B, p2.\nRow 2: K2, p4, k2.\nRow 3: P2, k4, p2.\nRow 4: Rep Row 2.\n"},
+      {"cable-4", "Rnd 1: p2, 2/2 RC, p2.\nRnds 2-4: p2, k4, p2.\n"},
+      {"twisted-rib", "Rnd 1: *k1 tbl, p1; rep from *.\n"},
+  };
+  for (const auto& [name, text] : cases) {
+    // Twisted rib is written with skein's k+1; a crossed knit (k1 tbl) is `x`: compare it as the same fabric.
+    auto expected = bundled(name);
+    if (name == "twisted-rib") expected = mesh::parse_pattern("format knit\nx p\n", "x.knit");
+    const auto written = mesh::parse_pattern(text, name + ".txt");
+    EXPECT_TRUE(same_fabric(written, expected)) << name << ": " << text << "read as " << rows_text(written) << " cables " << written.cables.size();
+  }
+}
+
+TEST(WrittenPattern, WrongSideRowsAreReadLeftToRightAndSeenFromTheFront) {
+  // Flat: row 2 (WS) "k1, p3" is worked from the back, left to right as seen from the front: purl, knit x 3.
+  auto p = mesh::parse_pattern("Row 1 (RS): p1, k3.\nRow 2 (WS): k1, p3.\n", "w.txt");
+  ASSERT_EQ(p.rows.size(), 2u);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "k", "p"}));  // RS read right to left
+  EXPECT_EQ(p.rows[1], (std::vector<std::string>{"p", "k", "k", "k"}));
+  // Unmarked rows alternate RS and WS from row 1; slips keep the float on the side the yarn was held.
+  p = mesh::parse_pattern("Row 1: sl1 wyif, k1.\nRow 2: sl1 wyif, p1.\n", "s.txt");
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "sk"}));
+  EXPECT_EQ(p.rows[1], (std::vector<std::string>{"s", "k"}));
+  // Decreases seen from the front, and Leaf's lace faces for a yarn-over with its decrease.
+  p = mesh::parse_pattern("Row 1 (RS): k2tog, yo, k2, yo, ssk, k2.\nRow 2: purl.\n", "l.txt");
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "ys", "k", "k", "2u"}));
+  p = mesh::parse_pattern("Rnd 1: k2, yo, sk2p, yo, k2.\nRnd 2: knit.\n", "y.txt");
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "y3y", "k", "k"}));
+  // Cables read as a knitter means them: C4F's first two stitches (the right ones) cross left in front.
+  p = mesh::parse_pattern("Rnd 1: C4F.\nRnd 2: k4.\n", "c.txt");
+  ASSERT_EQ(p.cables.size(), 1u);
+  EXPECT_EQ(p.cables[0], (mesh::PatternCable{0, 0, 2, 2, -1}));
+  // Rows of different repeats widen to the least common multiple.
+  p = mesh::parse_pattern("Rnd 1: *k1, p1; rep from *.\nRnd 2: *k1, p2; rep from *.\n", "m.txt");
+  EXPECT_EQ(p.width(), 6);
+}
+
+TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
+  EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
+            "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'p', 'yo'? (patterns/FORMAT.md lists what is read)");
+  EXPECT_EQ(error("Row 1: k2, kfb, k2.\n"), "p.txt: line 1, column 12: 'kfb' is a knitting abbreviation skein has no stitch model for yet");
+  EXPECT_EQ(error("Row 1: knit.\nRow 3: purl.\n"), "p.txt: line 2: row 3 comes where row 2 was expected (rows are numbered from 1, in order)");
+  EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
+  EXPECT_EQ(error("Row 1: [k1, p1].\n"), "p.txt: line 1, column 17: expected how many times the group is worked after it ('3 times' or 'x3')");
+  EXPECT_EQ(error("Row 1: knit.\nRnd 2: knit.\n"), "p.txt: line 2: mixes rows (worked flat) and rounds (in the round)");
+  EXPECT_EQ(error("Row 1 (RS): knit.\nRow 2: C4F.\n"), "p.txt: line 2, column 8: cables on wrong-side rows have no model yet: cross them on right-side rows");
+  EXPECT_EQ(error("Rnd 1: k1, sk2p, k1.\n"), "p.txt: line 1, column 12: 'sk2p' has a stitch model only between two yarn-overs ('yo, sk2p, yo', Leaf's y3y)");
+  EXPECT_EQ(error("Row 1: knit.\nCast on loosely.\n"), "p.txt: line 2: expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
+  EXPECT_EQ(error("Rnd 1: k2tog.\nRnd 2: k2.\n"), "p.txt: line 2: this row takes 2 loops but the row below it (line 1) makes 1");
+  EXPECT_EQ(error("Row 1: " + std::string(5000, 'k') + "\n"), "p.txt: line 1: is longer than 4096 characters");
+  // Not a written pattern: skein's own format keeps its errors.
+  EXPECT_FALSE(mesh::is_written_pattern("format knit\nk p\n"));
+  EXPECT_TRUE(mesh::is_written_pattern("# a comment\nMultiple of 2.\nRow 1: k1, p1.\n"));
+  EXPECT_TRUE(mesh::is_written_pattern("format written\n"));
+}
