@@ -806,7 +806,6 @@ int main(int argc, char** argv) {
         pat_options.audit = !pat_no_audit;
         pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
         if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
-        if (pat_options.period.free && !pat_period.empty()) throw Error("", "--free-period", "relaxes the period: leave out --period");
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
         pat_extra["gamma"] = pat_gamma;

@@ -420,10 +420,22 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   for (const auto& p : skein::relax::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
   EXPECT_GT(hi - lo, ehi - elo + 0.5);
   // Refused, naming the option, with nothing written.
-  const std::array<std::pair<const char*, const char*>, 4> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
-                                                                         {"--relax --free-period --period 0.9x1", "leave out --period"},
+  const std::array<std::pair<const char*, const char*>, 3> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
                                                                          {"--relax --stop-rule force --backend cuda", "runs on the CPU only"},
                                                                          {"--relax --free-period --period-tolerance 0", "period tolerance"}}};
+  // --period with --free-period is where the period starts: the log's first row has 0.8 of the emitted width.
+  r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "start.bcc").string() + " --relax --free-period --period 0.8x1 --max-steps 5 --log " +
+                (dir / "start.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream log(slurp(dir / "start.csv"));
+  std::string header, first;
+  std::getline(log, header);
+  std::getline(log, first);
+  std::vector<std::string> fields;
+  for (std::stringstream f(first); std::getline(f, fields.emplace_back(), ',');) {
+  }
+  ASSERT_GE(fields.size(), 13u) << first;
+  EXPECT_NEAR(std::stod(fields[12]), 0.8 * 6, 0.05) << first;  // period_x after one step, from 0.8 x 6 mm
   for (const auto& [args, message] : refusals) {
     r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "refused.bcc").string() + " " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
