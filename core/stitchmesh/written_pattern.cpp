@@ -141,6 +141,18 @@ private:
     item.type = type;
     return item;
   }
+  /// Two loops taken by one, as seen from the front on a right-side and on a wrong-side row.
+  struct Decrease {
+    const char* written;
+    const char* right_side;
+    const char* wrong_side;
+  };
+  const Decrease* decrease(std::smatch& m) {
+    static const Decrease kDecreases[] = {{"k2tog", "d12k", "d12p"}, {"p2tog", "d12p", "d12k"}, {"ssk", "d21k", "d21p"}, {"ssp", "d21p", "d21k"}};
+    for (const auto& d : kDecreases)
+      if (match(d.written, m)) return &d;
+    return nullptr;
+  }
   void add(std::vector<Item>& items, Item item, int count) {
     for (int i = 0; i < count; ++i) items.push_back(item);
   }
@@ -218,21 +230,12 @@ private:
         c.under = b;
         c.order = order;
         items.push_back(c);
-      } else if (match(R"(k2tog)", m)) {
-        m_pos += 5;
-        items.push_back(stitch(at, "k2tog", "d12k", "d12p"));
-      } else if (match(R"(p2tog)", m)) {
-        m_pos += 5;
-        items.push_back(stitch(at, "p2tog", "d12p", "d12k"));
+      } else if (const Decrease* d = decrease(m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        items.push_back(stitch(at, d->written, d->right_side, d->wrong_side));
       } else if (match(R"(sk2po?|s2kp2?|cdd)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
-      } else if (match(R"(ssk)", m)) {
-        m_pos += 3;
-        items.push_back(stitch(at, "ssk", "d21k", "d21p"));
-      } else if (match(R"(ssp)", m)) {
-        m_pos += 3;
-        items.push_back(stitch(at, "ssp", "d21p", "d21k"));
       } else if (match(R"(yo(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         add(items, stitch(at, "yo", "y", "y"), m[1].length() ? std::stoi(m[1].str()) : 1);
