@@ -146,10 +146,10 @@ json yarn_json(const mesh::YarnCurves& yarn) {
           {"radius", s.radius}};
 }
 
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview) {
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview, const std::string& unit) {
   const auto ext = fs::path(path).extension();
   if (ext == ".bcc") relax::write_bcc(yarn, path, preview);
-  else if (ext == ".obj") relax::write_obj_polylines(yarn, path, preview);
+  else if (ext == ".obj") relax::write_obj_polylines(yarn, path, preview, unit);
   else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
 }
 

@@ -100,7 +100,7 @@ void render_stretch(const mesh::StitchMesh& sm, double r_course, double r_wale, 
 mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr);
 /// Writes yarn as .bcc or .obj polylines, by the extension; `preview` marks it as placed for a preview, not
 /// relaxed (relax::write_bcc).
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false);
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
 
 /// "A:B" (inclusive) or "A" → row ids.
 std::pair<int, int> parse_rows(const std::string& s);

@@ -129,6 +129,9 @@ int main(int argc, char** argv) {
   yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
   yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
   yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
+  std::string yarn_units = "mm";
+  yarn_cmd->add_option("--units", yarn_units, "units of the OBJ outputs (polylines and --tubes): mm, cm or m (Blender reads OBJ as metres); .bcc stays in mm")
+      ->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
   yarn_cmd->add_option("--yarn-radius", yarn_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
   FabricChoice yarn_fabric;
   add_fabric(yarn_cmd, yarn_fabric, "sets the yarn radius", false);
@@ -573,6 +576,7 @@ int main(int argc, char** argv) {
     if (*yarn_cmd) {
       for (const auto& p : {yarn_out, yarn_tubes, yarn_png})
         if (!p.empty()) check_writable(p);
+      if (yarn_units != "mm" && is_bcc(yarn_out)) throw Error("", "--units " + yarn_units, "applies to OBJ outputs; a .bcc is in millimetres");
       Stopwatch t;
       mesh::EmitReport report;
       if (const auto fabric = resolve_fabric(yarn_fabric, false, yarn_cmd->count("--yarn-radius") > 0); fabric.radius) yarn_radius = *fabric.radius;
@@ -581,10 +585,15 @@ int main(int argc, char** argv) {
                    std::count(yarn.closed.begin(), yarn.closed.end(), 1), yarn.points.size(), yarn.radius, t.seconds());
       spdlog::info("borders: {} cast-on stitches, {} bind-off pieces, {} turns, {} tied ends; {} cable faces", report.cast_on, report.bind_off,
                    report.turns, report.tied_ends, report.cables);
-      write_yarn(yarn, yarn_out);
+      // OBJ carries no units: scaled here to the ones asked for. A .bcc says "radius R mm" and stays in mm.
+      const double unit = yarn_units == "m" ? 1e-3 : yarn_units == "cm" ? 0.1 : 1.0;
+      auto scaled = yarn;
+      for (auto& p : scaled.points) p *= unit;
+      scaled.radius *= unit;
+      write_yarn(scaled, yarn_out, false, yarn_units);
       spdlog::info("wrote {}", yarn_out);
       if (!yarn_tubes.empty()) {
-        relax::write_tube_obj(yarn, yarn_tubes);
+        relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
         spdlog::info("wrote {}", yarn_tubes);
       }
       if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);

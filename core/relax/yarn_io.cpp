@@ -118,9 +118,9 @@ YarnCurves read_bcc(const std::filesystem::path& path) {
   return y;
 }
 
-void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview) {
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview, const std::string& unit) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << (preview ? "# skein preview: " : "# skein yarn: ") << yarn.curves() << " curves, " << yarn.points.size() << " control points, radius " << yarn.radius << " mm\n";
+    out << (preview ? "# skein preview: " : "# skein yarn: ") << yarn.curves() << " curves, " << yarn.points.size() << " control points, radius " << yarn.radius << " " << unit << "\n";
     char buf[96];
     for (const auto& p : yarn.points) {
       std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", p.x(), p.y(), p.z());
@@ -178,7 +178,7 @@ std::vector<std::vector<Eigen::Vector3d>> tube_rings(const std::vector<Eigen::Ve
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
   const auto curves = sample_curves(yarn, std::max(1, options.samples_per_segment));
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "# skein yarn tubes: radius " << yarn.radius << " mm, " << options.sides << " sides\n";
+    out << "# skein yarn tubes: radius " << yarn.radius << " " << options.unit << ", " << options.sides << " sides\n";
     char buf[96];
     long base = 1;
     for (size_t c = 0; c < curves.size(); ++c) {

@@ -20,12 +20,14 @@ YarnCurves read_bcc(const std::filesystem::path& path);
 
 /// OBJ polylines (`l` records, one per curve; closed curves repeat their first point), as Blender imports them.
 /// `preview`: the first comment says "skein preview" instead of "skein yarn".
-void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview = false);
+/// `unit` names what the coordinates are in, for the header comment (the caller scales them).
+void write_obj_polylines(const YarnCurves& yarn, const std::filesystem::path& path, bool preview = false, const std::string& unit = "mm");
 
 /// A tube mesh around the Catmull-Rom curves, for any renderer.
 struct TubeOptions {
   int sides = 8;              ///< polygon sides around the yarn
   int samples_per_segment = 4;  ///< spline samples between two control points
+  std::string unit = "mm";      ///< what the coordinates are in, for the header comment
 };
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
 

@@ -144,6 +144,31 @@ TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
   }
 }
 
+TEST(Cli, YarnObjInMetresForBlender) {
+  ScratchDir dir;
+  const auto project = (dir / "s.skein").string();
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --labels " + kModels + "/swatch.skein -o " + project).status, 0);
+  const auto first_vertex = [](const std::string& text) {
+    double x = 0, y = 0, z = 0;
+    const auto at = text.find("\nv ");
+    std::sscanf(text.c_str() + at, "\nv %lf %lf %lf", &x, &y, &z);
+    return Eigen::Vector3d(x, y, z);
+  };
+  ASSERT_EQ(run_skein("yarn " + project + " -o " + (dir / "mm.obj").string() + " --tubes " + (dir / "mm-tubes.obj").string()).status, 0);
+  auto r = run_skein("yarn " + project + " -o " + (dir / "m.obj").string() + " --tubes " + (dir / "m-tubes.obj").string() + " --units m");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const auto& [mm, m] : {std::pair{"mm.obj", "m.obj"}, std::pair{"mm-tubes.obj", "m-tubes.obj"}}) {
+    const auto a = first_vertex(slurp(dir / mm)), b = first_vertex(slurp(dir / m));
+    EXPECT_GT(a.norm(), 0.1) << mm;
+    EXPECT_NEAR((b - 1e-3 * a).norm(), 0, 1e-6 * a.norm()) << m;
+  }
+  EXPECT_NE(slurp(dir / "m.obj").find("radius 0.0006 m\n"), std::string::npos);
+  r = run_skein("yarn " + project + " -o " + (dir / "y.bcc").string() + " --units cm");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--units cm: applies to OBJ outputs; a .bcc is in millimetres"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "y.bcc"));
+}
+
 TEST(Cli, AMeshThatWouldMakeTooManyStitchesIsRefusedBeforeTessellating) {
   ScratchDir dir;
   // The swatch (120 x 100 mm) read as if its millimetres were stitches of 10 µm: about 1.4e8 stitches.
