@@ -43,13 +43,29 @@ InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vecto
     : m_source(std::move(source)), m_points(std::move(points)), m_faces(std::move(faces)) {
   const auto fail = [&](const std::string& place, const std::string& rule) { throw Error(m_source, place, rule); };
   if (m_faces.empty()) fail("", "the mesh has no faces (points or lines only?)");
+  // Every problem of a stage is listed, as mesh tools list them (issue 25); the next stage runs only on a mesh
+  // that passed the one before, since it relies on it.
+  std::vector<std::pair<std::string, std::string>> problems;
+  const auto note = [&](const std::string& place, const std::string& rule) { problems.emplace_back(place, rule); };
+  const auto stop_if_any = [&] {
+    if (problems.empty()) return;
+    std::string rule = problems[0].second;
+    constexpr size_t kListed = 10;
+    if (problems.size() > 1) {
+      rule += "; " + std::to_string(problems.size() - 1) + " more:";
+      for (size_t i = 1; i < problems.size() && i <= kListed; ++i) rule += (i > 1 ? "; " : " ") + problems[i].first + " " + problems[i].second;
+      if (problems.size() > kListed + 1) rule += "; ...";
+    }
+    fail(problems[0].first, rule);
+  };
   const int nv = num_vertices();
   for (int v = 0; v < nv; ++v)
     if (!m_points[v].allFinite()) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "coordinates (%g, %g, %g) are not finite numbers", m_points[v].x(), m_points[v].y(), m_points[v].z());
-      fail("vertex " + std::to_string(v), buf);
+      note("vertex " + std::to_string(v), buf);
     }
+  stop_if_any();
 
   Eigen::AlignedBox3d box;
   for (const auto& p : m_points) box.extend(p);
@@ -58,15 +74,26 @@ InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vecto
   for (int f = 0; f < num_faces(); ++f) {
     const auto& face = m_faces[f];
     const std::string place = "face " + std::to_string(f);
-    if (face.size() < 3) fail(place, "has " + std::to_string(face.size()) + " vertices; a face needs at least 3");
-    for (size_t i = 0; i < face.size(); ++i) {
-      if (face[i] < 0 || face[i] >= nv) fail(place, "refers to vertex " + std::to_string(face[i]) + ", but there are " + std::to_string(nv));
-      for (size_t j = 0; j < i; ++j)
-        if (face[i] == face[j]) fail(place, "uses vertex " + std::to_string(face[i]) + " twice (vertices " + vertex_list(face) + ")");
+    if (face.size() < 3) {
+      note(place, "has " + std::to_string(face.size()) + " vertices; a face needs at least 3");
+      continue;
     }
-    if (area_vector(m_points, face).norm() * 0.5 <= 1e-12 * diag * diag)
-      fail(place, "has zero area (vertices " + vertex_list(face) + ")");
+    bool indices = true;
+    for (size_t i = 0; i < face.size() && indices; ++i) {
+      if (face[i] < 0 || face[i] >= nv) {
+        note(place, "refers to vertex " + std::to_string(face[i]) + ", but there are " + std::to_string(nv));
+        indices = false;
+        break;
+      }
+      for (size_t j = 0; j < i && indices; ++j)
+        if (face[i] == face[j]) {
+          note(place, "uses vertex " + std::to_string(face[i]) + " twice (vertices " + vertex_list(face) + ")");
+          indices = false;
+        }
+    }
+    if (indices && area_vector(m_points, face).norm() * 0.5 <= 1e-12 * diag * diag) note(place, "has zero area (vertices " + vertex_list(face) + ")");
   }
+  stop_if_any();
 
   // Edges: each used at most twice, in opposite directions.
   auto& edge_of = m_edge_of;
@@ -84,12 +111,12 @@ InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vecto
       auto& uses = m_edge_uses[it->second];
       const std::string place = "edge " + std::to_string(u) + "-" + std::to_string(v);
       if (uses.size() == 2)
-        fail(place, "is shared by more than two faces (faces " + std::to_string(uses[0].face) + ", " + std::to_string(uses[1].face) + ", " +
+        note(place, "is shared by more than two faces (faces " + std::to_string(uses[0].face) + ", " + std::to_string(uses[1].face) + ", " +
                         std::to_string(f) + "); the mesh must be manifold");
       if (uses.size() == 1) {
         const auto& other = m_faces[uses[0].face];
         if (other[uses[0].local] == u)
-          fail(place, "faces " + std::to_string(uses[0].face) + " and " + std::to_string(f) +
+          note(place, "faces " + std::to_string(uses[0].face) + " and " + std::to_string(f) +
                           " run along it in the same direction; the faces must be oriented consistently");
       }
       uses.push_back({f, static_cast<int>(k)});
@@ -127,11 +154,14 @@ InputMesh::InputMesh(std::vector<Eigen::Vector3d> points, std::vector<std::vecto
           if (joined) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
         }
       for (size_t i = 1; i < fs.size(); ++i)
-        if (find(static_cast<int>(i)) != find(0))
-          fail("vertex " + std::to_string(v), "is non-manifold: faces " + std::to_string(fs[0]) + " and " + std::to_string(fs[i]) +
+        if (find(static_cast<int>(i)) != find(0)) {
+          note("vertex " + std::to_string(v), "is non-manifold: faces " + std::to_string(fs[0]) + " and " + std::to_string(fs[i]) +
                                                    " meet only at this vertex (two fans)");
+          break;
+        }
     }
   }
+  stop_if_any();
   std::vector<PolyMesh::VertexHandle> vh(nv);
   for (int v = 0; v < nv; ++v) vh[v] = m_mesh.add_vertex(PolyMesh::Point(m_points[v].x(), m_points[v].y(), m_points[v].z()));
   std::vector<PolyMesh::VertexHandle> loop;

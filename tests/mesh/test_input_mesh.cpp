@@ -145,6 +145,29 @@ TEST(InputMesh, NonManifoldVertexIsRejected) {
   EXPECT_NE(msg.find("non-manifold"), std::string::npos) << msg;
 }
 
+TEST(InputMesh, EveryProblemIsListedAtOnce) {
+  // Three bow ties (pairs of triangles touching at one vertex), one flipped quad and an edge of three faces.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<int>> faces;
+  for (int k = 0; k < 3; ++k) {
+    const double x = 10.0 * k;
+    const int b = static_cast<int>(points.size());
+    for (const Eigen::Vector3d p : {Eigen::Vector3d(x, 0, 0), {x + 1, 0, 0}, {x + 1, 1, 0}, {x - 1, 0, 0}, {x - 1, -1, 0}}) points.push_back(p);
+    faces.push_back({b, b + 1, b + 2});
+    faces.push_back({b, b + 3, b + 4});
+  }
+  std::string msg = error_of([&] { mesh::InputMesh(points, faces, "ties.obj"); });
+  EXPECT_EQ(msg, "ties.obj: vertex 0: is non-manifold: faces 0 and 1 meet only at this vertex (two fans); 2 more: vertex 5 is non-manifold: faces 2 "
+                 "and 3 meet only at this vertex (two fans); vertex 10 is non-manifold: faces 4 and 5 meet only at this vertex (two fans)");
+  // Edge problems and vertex problems of one stage come together.
+  points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}, {1, 0, 1}};
+  faces = {{0, 1, 2, 3}, {1, 4, 5, 2}, {1, 2, 6}, {2, 1, 4}};
+  msg = error_of([&] { mesh::InputMesh(points, faces, "mixed.obj"); });
+  EXPECT_NE(msg.find("more:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("shared by more than two faces"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("in the same direction"), std::string::npos) << msg;
+}
+
 TEST(InputMesh, NonFiniteCoordinatesNameTheVertex) {
   const std::string msg = error_of([] {
     mesh::InputMesh({{0, 0, 0}, {1, 0, 0}, {std::nan(""), 1, 0}}, {{0, 1, 2}}, "nan.obj");
