@@ -129,6 +129,8 @@ int main(int argc, char** argv) {
   yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
   yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
   yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
+  std::string yarn_ids;
+  yarn_cmd->add_option("--ids", yarn_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks");
   std::string yarn_units = "mm";
   yarn_cmd->add_option("--units", yarn_units, "units of the OBJ outputs (polylines and --tubes): mm, cm or m (Blender reads OBJ as metres); .bcc stays in mm")
       ->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
@@ -574,7 +576,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*yarn_cmd) {
-      for (const auto& p : {yarn_out, yarn_tubes, yarn_png})
+      for (const auto& p : {yarn_out, yarn_tubes, yarn_png, yarn_ids})
         if (!p.empty()) check_writable(p);
       if (yarn_units != "mm" && is_bcc(yarn_out)) throw Error("", "--units " + yarn_units, "applies to OBJ outputs; a .bcc is in millimetres");
       Stopwatch t;
@@ -595,6 +597,10 @@ int main(int argc, char** argv) {
       if (!yarn_tubes.empty()) {
         relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
         spdlog::info("wrote {}", yarn_tubes);
+      }
+      if (!yarn_ids.empty()) {
+        relax::write_point_ids(yarn, *mesh::read_project(yarn_in).stitch, yarn_ids);
+        spdlog::info("wrote {}", yarn_ids);
       }
       if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
       return 0;

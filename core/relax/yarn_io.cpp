@@ -209,6 +209,21 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
   });
 }
 
+void write_point_ids(const YarnCurves& yarn, const mesh::StitchMesh& mesh, const std::filesystem::path& path) {
+  const int faces = static_cast<int>(mesh.faces.size());
+  for (size_t p = 0; p < yarn.point_face.size(); ++p)
+    if (yarn.point_face[p] >= faces)
+      throw Error(path.string(), "point " + std::to_string(p), "names face " + std::to_string(yarn.point_face[p]) + " of a stitch mesh of " + std::to_string(faces));
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "point,curve,face,row,type\n";
+    for (int c = 0; c < yarn.curves(); ++c)
+      for (int p = yarn.curve_start[c]; p < yarn.curve_start[c + 1]; ++p) {
+        const int f = p < static_cast<int>(yarn.point_face.size()) ? yarn.point_face[p] : -1;
+        out << p << ',' << c << ',' << f << ',' << (f >= 0 ? mesh.faces[f].row : -1) << ',' << (f >= 0 ? mesh.faces[f].type : "") << '\n';
+      }
+  });
+}
+
 YarnStats yarn_stats(const YarnCurves& yarn) {
   YarnStats s;
   s.curves = yarn.curves();

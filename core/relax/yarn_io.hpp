@@ -3,6 +3,7 @@
 #include <string>
 #include <utility>
 
+#include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::relax {
@@ -30,6 +31,12 @@ struct TubeOptions {
   std::string unit = "mm";      ///< what the coordinates are in, for the header comment
 };
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
+
+/// The stitch ids of a yarn's control points (issue 27), as CSV with a header: `point,curve,face,row,type` per
+/// control point, numbered as the .bcc or OBJ written from the same yarn numbers them; `face` is the stitch-mesh
+/// face the point was emitted in, `row` and `type` that face's; -1 and an empty type for a point of no face.
+/// Throws skein::Error when the yarn names a face `mesh` does not have.
+void write_point_ids(const YarnCurves& yarn, const mesh::StitchMesh& mesh, const std::filesystem::path& path);
 
 /// Rings of `sides` points of the given radius around a sampled curve, in a parallel-transported frame so
 /// that the tube does not twist: one ring per sample.

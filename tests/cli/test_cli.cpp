@@ -144,7 +144,7 @@ TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
   }
 }
 
-TEST(Cli, YarnObjInMetresForBlender) {
+TEST(Cli, YarnObjInMetresForBlenderAndTheStitchIdsBesideIt) {
   ScratchDir dir;
   const auto project = (dir / "s.skein").string();
   ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --labels " + kModels + "/swatch.skein -o " + project).status, 0);
@@ -163,6 +163,33 @@ TEST(Cli, YarnObjInMetresForBlender) {
     EXPECT_NEAR((b - 1e-3 * a).norm(), 0, 1e-6 * a.norm()) << m;
   }
   EXPECT_NE(slurp(dir / "m.obj").find("radius 0.0006 m\n"), std::string::npos);
+  // The stitch ids side file: a row per control point, numbered as the OBJ's vertices, every face a real one.
+  r = run_skein("yarn " + project + " -o " + (dir / "y.obj").string() + " --ids " + (dir / "ids.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream ids(slurp(dir / "ids.csv"));
+  std::string line;
+  std::getline(ids, line);
+  EXPECT_EQ(line, "point,curve,face,row,type");
+  const auto stats = run_skein("stats " + project + " --json").output;
+  const auto at = stats.find("\"faces\": ");
+  ASSERT_NE(at, std::string::npos) << stats;
+  const int faces = std::atoi(stats.c_str() + at + 9);
+  long points = 0, with_face = 0;
+  std::set<int> rows;
+  for (; std::getline(ids, line); ++points) {
+    int point = 0, curve = 0, face = 0, row = 0;
+    char type[16] = "";
+    ASSERT_GE(std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &point, &curve, &face, &row, type), 4) << line;
+    EXPECT_EQ(point, points);
+    EXPECT_LT(face, faces) << line;
+    if (face >= 0) ++with_face, rows.insert(row);
+  }
+  const std::string obj = slurp(dir / "y.obj");
+  long vertices = 0;
+  for (size_t at = obj.find("\nv "); at != std::string::npos; at = obj.find("\nv ", at + 1)) ++vertices;
+  EXPECT_EQ(points, vertices);
+  EXPECT_GT(with_face, points / 2);
+  EXPECT_GT(rows.size(), 1u);
   r = run_skein("yarn " + project + " -o " + (dir / "y.bcc").string() + " --units cm");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--units cm: applies to OBJ outputs; a .bcc is in millimetres"), std::string::npos) << r.output;
