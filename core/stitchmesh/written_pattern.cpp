@@ -1,6 +1,7 @@
 #include "stitchmesh/written_pattern.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <filesystem>
 #include <numeric>
@@ -72,9 +73,9 @@ std::string suggestions(const std::string& word) {
 /// A centred double decrease (sk2p, s2kp, cdd) before pair_lace gives it a model.
 const std::string kCentred = "centred double decrease";
 
-/// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over and the decrease that pays for it, as
-/// written on a right-side row: "yo, ssk" is `ys`, "k2tog, yo" is `2u`, "yo, sk2p, yo" is `y3y`. A yarn-over
-/// alone stays Yuksel's `y` (a face over one loop below).
+/// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over beside the decrease that pays for it, on
+/// a right-side row: "yo, ssk" or "ssk, yo" is `ys`, "k2tog, yo" or "yo, k2tog" is `2u`, "yo, sk2p, yo" is `y3y`.
+/// A yarn-over with no decrease beside it is an increase, which has no model yet: an error.
 void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
   std::vector<Item> out;
   const auto is = [&](size_t i, const char* written) { return i < items.size() && items[i].written == written; };
@@ -84,14 +85,18 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
       item.type = "y3y";
       item.written = "yo, " + items[i + 1].written + ", yo";
       i += 2;
-    } else if (is(i, "yo") && is(i + 1, "ssk")) {
+    } else if ((is(i, "yo") && is(i + 1, "ssk")) || (is(i, "ssk") && is(i + 1, "yo"))) {
       item.type = "ys";
-      item.written = "yo, ssk";
+      item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
-    } else if (is(i, "k2tog") && is(i + 1, "yo")) {
+    } else if ((is(i, "k2tog") && is(i + 1, "yo")) || (is(i, "yo") && is(i + 1, "k2tog"))) {
       item.type = "2u";
-      item.written = "k2tog, yo";
+      item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
+    } else if (is(i, "yo")) {
+      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
+                  "a yarn-over has a stitch model only beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...): a lone yarn-over "
+                  "is an increase, and increases have no model yet");
     } else if (item.type == kCentred) {
       throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
                   "'" + item.written + "' has a stitch model only between two yarn-overs ('yo, " + item.written + ", yo', Leaf's y3y)");
@@ -170,7 +175,7 @@ private:
       if (m_text[m_pos] == '*') {
         ++m_pos;
         items.push_back(make(Item::Star, "*", static_cast<int>(at) + m_offset + 1));
-      } else if (match(R"(rep(?:eat)?\.?\s+from\s+\*(?:\s+(?:to\s+end|across|around|to\s+last\s+(\d+)\s+(?:sts?|stitch(?:es)?)))?)", m)) {
+      } else if (match(R"(rep(?:eat)?\.?\s+from\s+\*(?:\s+(?:to\s+end|across|around|to\s+last\s+(?:(\d+)\s+)?(?:sts?|stitch(?:es)?)))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(make(Item::Repeat, "rep from *", static_cast<int>(at) + m_offset + 1));
       } else if (m_text[m_pos] == '[' || m_text[m_pos] == '(') {
@@ -238,7 +243,7 @@ private:
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
       } else if (match(R"(yo(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        add(items, stitch(at, "yo", "y", "y"), m[1].length() ? std::stoi(m[1].str()) : 1);
+        add(items, stitch(at, "yo", "y", ""), m[1].length() ? std::stoi(m[1].str()) : 1);
       } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
@@ -295,6 +300,7 @@ int loops_taken(const std::vector<Item>& items) {
 struct WrittenRow {
   std::vector<Item> before, repeat, after;  ///< flat: no groups, stars or repeats; stitches as seen from the front
   bool right_side = true;
+  bool starred = false;  ///< written with a `*` repeat; without one (and not a fill) the row is as wide as written
   int line = 0;
   int edges() const { return loops_taken(before) + loops_taken(after); }
   /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
@@ -322,6 +328,7 @@ WrittenRow split_row(std::vector<Item> written, bool right_side, int line, const
     throw Error(source, where, star == flat.end() ? "'rep from *' without a '*' before it" : "a '*' without 'rep from *' after it");
   if (star != flat.end()) {
     if (rep < star) throw Error(source, where + ", column " + std::to_string(rep->column), "'rep from *' comes before its '*'");
+    row.starred = true;
     row.before.assign(flat.begin(), star);
     row.repeat.assign(star + 1, rep);
     row.after.assign(rep + 1, flat.end());
@@ -348,13 +355,13 @@ struct RowHeader {
 };
 
 bool row_header(const std::string& line, RowHeader& h) {
-  static const std::regex re(R"(^\s*(rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?\s*(?:\(\s*(rs|ws)\s*\))?\s*[:.])", std::regex::icase);
+  static const std::regex re(R"(^\s*(rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?\s*(?:\(\s*(rs|ws|right\s+side|wrong\s+side)\s*\))?\s*[:.])", std::regex::icase);
   std::smatch m;
   if (!std::regex_search(line, m, re)) return false;
   h.round = lower(m[1].str())[1] == 'n' || lower(m[1].str()).rfind("round", 0) == 0;
   h.first = std::stoi(m[2].str());
   h.last = m[3].matched ? std::stoi(m[3].str()) : h.first;
-  h.side = m[4].matched ? (lower(m[4].str()) == "rs" ? 1 : -1) : 0;
+  h.side = m[4].matched ? (lower(m[4].str())[0] == 'r' ? 1 : -1) : 0;
   h.colon = static_cast<size_t>(m.length(0));
   return true;
 }
@@ -431,7 +438,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     }
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     RowHeader h;
-    static const std::regex again_line(R"(^\s*rep(?:eat)?\.?\s+rows?\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?(?:\s+for\s+(?:the\s+)?patt(?:ern)?)?\s*\.?\s*$)",
+    static const std::regex again_line(R"(^\s*rep(?:eat)?\.?\s+(?:rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?(?:\s+for\s+(?:the\s+)?patt(?:ern)?)?\s*\.?\s*$)",
                                         std::regex::icase);
     std::smatch again_m;
     if (started && std::regex_search(line, again_m, again_line)) {
@@ -442,6 +449,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     }
     if (!row_header(line, h)) {
       if (lower(line).find("format written") != std::string::npos && !started) continue;
+      static const std::regex heading(R"(^\s*(rows?|rnds?|rounds?)\s+\d)", std::regex::icase);
+      if (std::regex_search(line, heading))
+        throw Error(source, "line " + std::to_string(line_no),
+                    "a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' (patterns/FORMAT.md)");
       if (!started) {  // a description before the rows: "Multiple of 4 sts plus 2", "Cast on ..."
         description += (description.empty() ? "" : " ") + line.substr(line.find_first_not_of(" \t"));
         continue;
@@ -483,6 +494,13 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     width = std::lcm(width, loops_taken(row.repeat));
     if (width > 1000) throw Error(source, "line " + std::to_string(row.line), "makes the repeat wider than 1000 stitches");
     left = std::max(left, row.left_edge());
+  }
+  for (const auto& row : rows) {
+    const bool fill = row.repeat.size() == 1 && row.repeat[0].kind == Item::Fill;
+    if (!row.starred && !fill && loops_taken(row.repeat) != width)
+      throw Error(source, "line " + std::to_string(row.line),
+                  "is " + std::to_string(loops_taken(row.repeat)) + " stitches wide with no '*' repeat, but the pattern's repeat is " + std::to_string(width) +
+                      ": write the rows as wide, or mark their repeats with '*...; rep from * to end'");
   }
   const int total = edges + 3 * width;
   std::vector<std::vector<Item>> whole;
@@ -527,6 +545,23 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     row_line.push_back(rows[r].line);
   }
   check_stacking(p, row_line, source);
+  // The smallest repeat up the wale: "Rep Rows 1 and 2" makes rows 3 and 4 the same as 1 and 2.
+  const int height = static_cast<int>(p.rows.size());
+  const auto cables_of = [&](int r) {
+    std::vector<std::array<int, 4>> out;
+    for (const auto& c : p.cables)
+      if (c.row == r) out.push_back({c.first_loop, c.over, c.under, c.order});
+    return out;
+  };
+  for (int period = 1; period < height; ++period) {
+    if (height % period != 0) continue;
+    bool repeats = true;
+    for (int r = period; r < height && repeats; ++r) repeats = p.rows[r] == p.rows[r % period] && cables_of(r) == cables_of(r % period);
+    if (!repeats) continue;
+    p.rows.resize(period);
+    p.cables.erase(std::remove_if(p.cables.begin(), p.cables.end(), [&](const PatternCable& c) { return c.row >= period; }), p.cables.end());
+    break;
+  }
   return p;
 }
 

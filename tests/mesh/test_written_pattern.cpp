@@ -57,7 +57,9 @@ TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
       {"moss", "Multiple of 2 sts.\nRows 1 and 2: *K1, p1; rep from * to end.\nRows 3 and 4: *P1, k1; rep from * to end.\n"},
       {"honeycomb", "Multiple of 4 sts.\nRow 1 (RS): *Sl1 wyib, k3; rep from *.\nRow 2: Purl.\nRow 3: K2, *sl1 wyib, k3; rep from * to last 2 sts, k2.\n"
                     "Row 4: Purl.\n"},
-      {"honeycomb", "Rnd 1: [k3, sl1 wyib] 3 times.\nRnd 2: knit.\nRnd 3: k1, sl1, k2.\nRnd 4: K to end.\n"},
+      {"honeycomb", "Rnd 1: [k3, sl1 wyib] 3 times.\nRnd 2: knit.\nRnd 3: [k1, sl1, k2] 3 times.\nRnd 4: K to end.\n"},
+      {"seed", "Row 1 (right side): *K1, p1; rep from * to last st, k1.\nRow 2 (wrong side): Rep Row 1.\n"},
+      {"seed", "Rnd 1: *K1, p1; rep from *.\nRnd 2: *P1, k1; rep from *.\nRep Rnds 1 and 2.\n"},
       {"slip-rib", "Row 1 (RS): *sl 1 pwise wyib, k3; rep from * to end.\nRow 2 (WS): *p3, k1; rep from * to end.\n"},
       {"cable-4", "Panel of 8 sts.\nRow 1 (RS): P2, C4B, p2.\nRow 2: K2, p4, k2.\nRow 3: P2, k4, p2.\nRow 4: Rep Row 2.\n"},
       {"cable-4", "Rnd 1: p2, 2/2 RC, p2.\nRnds 2-4: p2, k4, p2.\n"},
@@ -91,6 +93,12 @@ TEST(WrittenPattern, WrongSideRowsAreReadLeftToRightAndSeenFromTheFront) {
   p = mesh::parse_pattern("Rnd 1: C4F.\nRnd 2: k4.\n", "c.txt");
   ASSERT_EQ(p.cables.size(), 1u);
   EXPECT_EQ(p.cables[0], (mesh::PatternCable{0, 0, 2, 2, -1}));
+  // A yarn-over on either side of its decrease; "Rep Rows 1 and 2" adds no height to the repeat.
+  p = mesh::parse_pattern("Row 1 (RS): *K1, yo, k2tog, k1; rep from * to end.\nRow 2: Purl.\n", "e.txt");
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "2u", "k"}));
+  p = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/rib-2x2.txt");
+  EXPECT_EQ(p.width(), 4);
+  EXPECT_EQ(p.height(), 1);  // every row is k k p p from the front
   // Rows of different repeats widen to the least common multiple.
   p = mesh::parse_pattern("Rnd 1: *k1, p1; rep from *.\nRnd 2: *k1, p2; rep from *.\n", "m.txt");
   EXPECT_EQ(p.width(), 6);
@@ -110,6 +118,15 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_EQ(error("Row 1: knit.\nCast on loosely.\n"), "p.txt: line 2: expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
   EXPECT_EQ(error("Rnd 1: k2tog.\nRnd 2: k2.\n"), "p.txt: line 2: this row takes 2 loops but the row below it (line 1) makes 1");
   EXPECT_EQ(error("Row 1: " + std::string(5000, 'k') + "\n"), "p.txt: line 1: is longer than 4096 characters");
+  EXPECT_EQ(error("Row 1: K4.\nRow 2: P5.\n"),
+            "p.txt: line 1: is 4 stitches wide with no '*' repeat, but the pattern's repeat is 20: write the rows as wide, or mark their repeats with "
+            "'*...; rep from * to end'");
+  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"),
+            "p.txt: line 1, column 17: a yarn-over has a stitch model only beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...): a lone "
+            "yarn-over is an increase, and increases have no model yet");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2 and all WS rows: purl.\n"),
+            "p.txt: line 2: a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' "
+            "(patterns/FORMAT.md)");
   // Not a written pattern: skein's own format keeps its errors.
   EXPECT_FALSE(mesh::is_written_pattern("format knit\nk p\n"));
   EXPECT_TRUE(mesh::is_written_pattern("# a comment\nMultiple of 2.\nRow 1: k1, p1.\n"));
