@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
+#include <map>
 #include <numeric>
 #include <regex>
 #include <sstream>
@@ -122,7 +123,11 @@ private:
     throw Error(m_source, "line " + std::to_string(m_line) + ", column " + std::to_string(m_offset + static_cast<int>(at) + 1), rule);
   }
   bool match(const char* pattern, std::smatch& m) {
-    const std::regex re(pattern, std::regex::icase);
+    // Compiled once per pattern and thread (each is a string literal of this file), not at every token tried.
+    thread_local std::map<const char*, std::regex> compiled;
+    auto it = compiled.find(pattern);
+    if (it == compiled.end()) it = compiled.emplace(pattern, std::regex(pattern, std::regex::icase)).first;
+    const std::regex& re = it->second;
     const auto begin = m_text.cbegin() + static_cast<long>(m_pos);
     if (!std::regex_search(begin, m_text.cend(), m, re, std::regex_constants::match_continuous)) return false;
     const size_t end = m_pos + static_cast<size_t>(m.length(0));

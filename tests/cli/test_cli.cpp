@@ -32,6 +32,13 @@ Run run_skein(const std::string& args) {
   const int status = ::pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+/// `skein COMMAND -o OUTPUT` is refused: exit 2, `message` in what it prints, nothing written.
+void expect_refused(const std::string& command, const std::filesystem::path& output, const std::string& message) {
+  const auto r = run_skein(command + " -o " + output.string());
+  EXPECT_EQ(r.status, 2) << command << "\n" << r.output;
+  EXPECT_NE(r.output.find(message), std::string::npos) << command << "\n" << r.output;
+  EXPECT_FALSE(std::filesystem::exists(output)) << command;
+}
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;
@@ -488,12 +495,8 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   }
   ASSERT_GE(fields.size(), 13u) << first;
   EXPECT_NEAR(std::stod(fields[12]), 0.8 * 6, 0.05) << first;  // period_x after one step, from 0.8 x 6 mm
-  for (const auto& [args, message] : refusals) {
-    r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "refused.bcc").string() + " " + args);
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
-    EXPECT_FALSE(std::filesystem::exists(dir / "refused.bcc")) << args;
-  }
+  for (const auto& [args, message] : refusals)
+    expect_refused("pattern " + patterns + "/stockinette.knit " + args, dir / "refused.bcc", message);
 }
 
 TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
@@ -524,12 +527,7 @@ TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
        {"pattern " + patterns + "/stockinette.knit --yarn wool", "is not a yarn weight; one of lace, fingering"},
        {"pattern " + patterns + "/stockinette.knit --gauge 18x", "expected STITCHES or STITCHESxROWS"},
        {"stitch " + kModels + "/tube.obj --auto-label --gauge 0", "must be a number in (0, 1000]"}}};
-  for (const auto& [args, message] : refusals) {
-    r = run_skein(args + " -o " + (dir / "refused.skein").string());
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
-    EXPECT_FALSE(std::filesystem::exists(dir / "refused.skein")) << args;
-  }
+  for (const auto& [args, message] : refusals) expect_refused(args, dir / "refused.skein", message);
 }
 
 TEST(Cli, PatternTilesEmitsAndRelaxes) {
