@@ -18,6 +18,11 @@ std::unique_ptr<relax::YarnRelaxer> make_yarn_relaxer(relax::Backend backend, co
     spdlog::info("clipped stop scale: relaxing on the CPU (the CUDA relaxer takes |∇E_0| whole)");
     return relax::make_cpu_yarn_relaxer(system, targets, options);
   }
+  if (options.method == relax::YarnMethod::Lbfgs) {
+    if (backend == relax::Backend::Cuda) throw Error("", "--method lbfgs", "runs on the CPU only; use --backend cpu or auto");
+    spdlog::info("L-BFGS: relaxing on the CPU (the CUDA relaxer integrates with Euler or FIRE)");
+    return relax::make_cpu_yarn_relaxer(system, targets, options);
+  }
   if (options.stop_rule == relax::StopRule::Force) {
     if (backend == relax::Backend::Cuda) throw Error("", "--stop-rule force", "runs on the CPU only; use --backend cpu or auto");
     spdlog::info("force stop rule: relaxing on the CPU (the CUDA relaxer stops by Leaf's rule)");

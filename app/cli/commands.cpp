@@ -282,7 +282,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   }
   ProgressBar bar(run.progress);
   auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(run.backend), system, targets, options);
-  spdlog::info("relaxing with {} ({} CPU threads for the host side)", run.method, omp_get_max_threads());
+  spdlog::info("relaxing with {} ({} CPU threads for the host side)", relax::to_string(options.method), omp_get_max_threads());
   const double log_tol = std::log(std::max(options.tolerance, 1e-12));
   std::vector<std::array<double, 3>> history;  // step, residual, energy
   const Stopwatch clock;
@@ -320,7 +320,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
       residuals.push_back(history[i][1]);
       energies.push_back(history[i][2]);
     }
-  json j = {{"input", run.input}, {"method", run.method}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
+  json j = {{"input", run.input}, {"method", relax::to_string(options.method)}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
             {"control_points", system.num_points()}, {"segments", system.num_segments()},
             {"contact_samples", system.sample_start.back() + system.contact_samples.back()}, {"contact_spacing_r", options.sampling.spacing},
             {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
@@ -335,8 +335,9 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   j["stop_scale"] = options.clipped_scale ? "clipped" : "first";
   j["stop_rule"] = relax::to_string(options.stop_rule);
   j["force_residual"] = report.force_residual;
-  if (report.free_period) {
-    // The relaxed repeat as a knitter reads it: its size and the gauge, per 10 cm (Leaf §7 set the period by hand).
+  if (!report.period.isZero()) {
+    // The relaxed repeat as a knitter reads it: its size and the gauge, per 10 cm (Leaf §7 set the period by hand);
+    // a fixed period's stress says which way its stress-free one lies.
     const Eigen::Matrix<double, 3, 2> period = report.period * run.scale;
     const double lx = period(0, 0), ly = period(1, 1);
     json free = {{"period_x_mm", {period(0, 0), period(1, 0), period(2, 0)}}, {"period_y_mm", {period(0, 1), period(1, 1), period(2, 1)}},
@@ -356,6 +357,14 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
       free["loop_length_mm"] = loop;
       free["Kc"] = run.repeat[1] / ly * loop;
       free["Kw"] = run.repeat[0] / lx * loop;
+      // A loop of yarn length l stands at most l / 2 tall: rows further apart than that no longer interlock. With
+      // a free row height frictionless yarn can get there, its loops sliding out of each other (docs/patterns.md).
+      const double row = ly / run.repeat[1];
+      free["rows_apart"] = report.free_period && row > 0.5 * loop;
+      if (free["rows_apart"].get<bool>())
+        spdlog::warn("the rows relaxed {:.1f} mm apart, more than half the loop length ({:.1f} mm): their loops have slid out of each other; "
+                     "free only the width (--free-period x) to hold the rows at the height of the gauge",
+                     row, loop);
       if (run.extra.contains("fabric") && run.extra["fabric"].contains("gauge_per_10cm")) {
         // The relaxed repeat against the gauge and Munden's loop length that were asked for (--gauge, --yarn).
         const json& fabric = run.extra["fabric"];
@@ -364,10 +373,15 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
                                  {"loop_length", loop / fabric["munden_loop_length_mm"].get<double>()}};
       }
     }
-    j["free_period"] = free;
-    spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,
-                 run.repeat[0] > 0 ? fmt::format(": {:.1f} stitches and {:.1f} rows per 10 cm", 100.0 * run.repeat[0] / lx, 100.0 * run.repeat[1] / ly)
-                                   : std::string());
+    j[report.free_period ? "free_period" : "fixed_period"] = free;
+    if (report.free_period)
+      spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,
+                   run.repeat[0] > 0 ? fmt::format(": {:.1f} stitches and {:.1f} rows per 10 cm", 100.0 * run.repeat[0] / lx, 100.0 * run.repeat[1] / ly)
+                                     : std::string());
+    else
+      spdlog::info("fixed period {:.2f} x {:.2f} mm: its stress {:.2g} across the courses, {:.2g} along the wales x B/r^3 "
+                   "(positive: the repeat would shrink that way; --free-period finds where it is zero)",
+                   lx, ly, report.period_stress.x(), report.period_stress.y());
   }
   if (options.active_set.enabled) {
     const auto& a = report.active;

@@ -131,7 +131,7 @@ int interrupt_signal();  ///< 0 when none came
 
 /// The outputs of a yarn relaxation (relax-yarn, pattern --relax, run).
 struct YarnRunOutputs {
-  std::string input, output, method, backend, report, log, png, views;
+  std::string input, output, backend, report, log, png, views;
   bool progress = false;  ///< a progress bar on the terminal
   json extra = json::object();  ///< more report fields
   int panel = 900;              ///< picture: pixels per view

@@ -75,7 +75,8 @@ public:
     const std::string v = text(key, fallback);
     if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
       std::string names;
-      for (const auto& c : choices) names += (names.empty() ? "\"" : " or \"") + c + "\"";
+      for (size_t i = 0; i < choices.size(); ++i)
+        names += (i == 0 ? "\"" : i + 1 == choices.size() ? " or \"" : ", \"") + choices[i] + "\"";
       fail(name(key), "expected " + names + ", found \"" + v + "\"");
     }
     return v;
@@ -122,7 +123,7 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
           "energy_stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
           "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
-  o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler"}));
+  o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler", "lbfgs"}));
   backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
   o.max_steps = k.integer("max_steps", o.max_steps, 0, 1L << 40);
   o.max_seconds = k.number("max_seconds", 0, 0, 1e9);
@@ -422,7 +423,6 @@ int run_job(const Job& job, bool resume, bool progress) {
       YarnRunOutputs outputs;
       outputs.input = job.file.string();
       outputs.output = run.out("yarn-relaxed.bcc");
-      outputs.method = relax::to_string(options.method);
       outputs.backend = job.backend;
       outputs.log = run.out("yarn-relax-log.csv");
       outputs.png = job.pictures ? run.out("yarn-relaxed.png") : "";

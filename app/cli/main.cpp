@@ -172,8 +172,8 @@ int main(int argc, char** argv) {
   std::string ry_checkpoint;
   ry->add_option("INPUT", ry_in, ".skein project (its stitch faces drive shape preservation) or .bcc yarn")->required();
   ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
-  ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast) or euler (Leaf Algorithm 1)")
-      ->check(CLI::IsMember({"fire", "euler"}))->capture_default_str();
+  ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast), euler (Leaf Algorithm 1) or lbfgs (quasi-Newton, CPU)")
+      ->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
   std::string ry_backend = "auto";
   ry->add_option("--backend", ry_backend, "auto (the GPU when one answers, else the CPU), cpu or cuda (an error without a GPU)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
@@ -307,13 +307,19 @@ int main(int argc, char** argv) {
   pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
   pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
   pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
-  std::string pat_stop_rule = "leaf";
+  std::string pat_method = "lbfgs";
+  pat->add_option("--method", pat_method, "with --relax: lbfgs, fire or euler, as relax-yarn's")->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
+  std::string pat_stop_rule = "force";
   pat->add_option("--stop-rule", pat_stop_rule, "with --relax: force (the largest force per yarn length against the yarn's bending force B/r³, and the energy "
                                                 "stalled) or leaf (eq. 5, relative to the first step), as relax-yarn's")
       ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
   pat->add_option("--force-tolerance", pat_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
-  pat->add_flag("--free-period", pat_options.period.free,
-                "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report");
+  std::string pat_free_axes;
+  pat->add_option("--free-period", pat_free_axes,
+                  "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report; "
+                  "x (no value: the width, the rows held at the height of the gauge), y or xy (frictionless yarn's rows may slide apart: "
+                  "docs/patterns.md)")
+      ->expected(0, 1)->default_str("x")->check(CLI::IsMember({"xy", "x", "y"}));
   pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
   pat->add_option("--k-bend", pat_options.params.k_bend, "with --relax: bending stiffness (Leaf eq. 7), as relax-yarn's")->capture_default_str();
   pat->add_option("--k-contact", pat_options.params.k_contact, "with --relax: contact stiffness (Leaf eq. 9), as relax-yarn's")->capture_default_str();
@@ -754,7 +760,7 @@ int main(int argc, char** argv) {
       }
       ry_options.interrupt = install_interrupt_handlers();
       return exit_status(relax_and_write(yarn, system, targets, ry_options, state,
-                                         {ry_in, ry_out, ry_method, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))}));
+                                         {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))}));
     }
     if (*pat) {
       int across = 0, up = 0;
@@ -820,6 +826,10 @@ int main(int argc, char** argv) {
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
         pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
+        pat_options.method = relax::parse_yarn_method(pat_method);
+        pat_options.period.free = pat->count("--free-period") > 0;
+        pat_options.period.free_x = pat_free_axes != "y";
+        pat_options.period.free_y = pat_free_axes == "y" || pat_free_axes == "xy";
         if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
@@ -839,7 +849,7 @@ int main(int argc, char** argv) {
         if (preview) pat_extra["preview"] = {{"output", pat_preview}, {"png", pat_preview_png}, {"tile", {across, up}}};
         auto state = relax::initial_state(system, pat_options);
         const json report = relax_and_write(yarn, system, targets, pat_options, state,
-                                            {pat_in, pat_out, "fire", pat_backend, pat_report, pat_log, pat_png, pat_views,
+                                            {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
                                              !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
                                              {pattern.width(), pattern.height()}});
         if (preview && report.at("stopped_by") != "interrupted") {

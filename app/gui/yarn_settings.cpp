@@ -53,6 +53,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   m_method->setObjectName("method");
   m_method->addItem(tr("FIRE (quasi-static, fast)"), static_cast<int>(relax::YarnMethod::Fire));
   m_method->addItem(tr("Euler (Leaf 2018, Algorithm 1)"), static_cast<int>(relax::YarnMethod::Euler));
+  m_method->addItem(tr("L-BFGS (quasi-Newton, CPU, fewest steps)"), static_cast<int>(relax::YarnMethod::Lbfgs));
   m_method->setCurrentIndex(m_method->findData(static_cast<int>(r.method)));
   m_tolerance = number("tolerance", 1e-4, 0.5, 0.005, 4, r.tolerance, tr("Stop when |∇E| / |∇E₀| is below this (Leaf eq. 5, ε1)"));
   m_max_steps = count("maxSteps", 1, 1000000, static_cast<int>(std::min<long>(r.max_steps, 1000000)), tr("Stop after this many steps"));

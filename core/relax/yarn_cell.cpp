@@ -99,9 +99,15 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
   return out;
 }
 
+Eigen::Vector3d period_stresses(const CellStress& stress, const Eigen::Matrix<double, 3, 2>& period) {
+  const double lx = period(0, 0), ly = period(1, 1);
+  return {stress.gradient(0, 0) / ly, stress.gradient(1, 1) / lx, stress.gradient(0, 1) / lx};
+}
+
 void PeriodOptions::validate() const {
   if (!(tolerance > 0) || !std::isfinite(tolerance))
     throw Error("", "period tolerance", "must be positive (a share of the yarn's bending force per length), found " + std::to_string(tolerance));
+  if (!free_x && !free_y) throw Error("", "--free-period", "frees neither length of the repeat: give x, y or xy");
 }
 
 PeriodRelaxer::PeriodRelaxer(const PeriodOptions& options, const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y) : m_options(options) {
@@ -114,10 +120,9 @@ PeriodRelaxer::PeriodRelaxer(const PeriodOptions& options, const Eigen::Vector3d
 }
 
 Eigen::Matrix<double, 3, 2> PeriodRelaxer::propose(const CellStress& stress, const PeriodicMap& map, double largest_move) {
-  const double lx = m_period(0, 0), ly = m_period(1, 1);
-  // dE/dL_x, dE/dL_y, dE/ds; as stresses, per length of the cut each acts across.
-  const Eigen::Vector3d g(stress.gradient(0, 0), stress.gradient(1, 1), m_options.shear ? stress.gradient(0, 1) : 0.0);
-  m_stress = Eigen::Vector3d(g.x() / ly, g.y() / lx, g.z() / lx);
+  const Eigen::Vector3d free(m_options.free_x, m_options.free_y, m_options.shear);
+  const Eigen::Vector3d g = Eigen::Vector3d(stress.gradient(0, 0), stress.gradient(1, 1), stress.gradient(0, 1)).cwiseProduct(free);
+  m_stress = period_stresses(stress, m_period).cwiseProduct(free);
   m_energy = stress.energy;
   Eigen::Vector3d move = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
@@ -153,7 +158,7 @@ void PeriodRelaxer::reject() {
 }
 
 bool PeriodRelaxer::converged(double limit) const {
-  return std::abs(m_stress.x()) <= limit && std::abs(m_stress.y()) <= limit && (!m_options.shear || std::abs(m_stress.z()) <= limit);
+  return m_stress.cwiseAbs().maxCoeff() <= limit;  // the held components' stresses are zero
 }
 
 }  // namespace skein::relax

@@ -32,6 +32,10 @@ struct CellStress {
 CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,
                        const Eigen::Matrix3Xd& points);
 
+/// The period's three stresses from its derivative: dE/dL_x / L_y, dE/dL_y / L_x and dE/ds / L_x (each per
+/// length of the cut it acts across; s is period_y's x component, the shear).
+Eigen::Vector3d period_stresses(const CellStress& stress, const Eigen::Matrix<double, 3, 2>& period);
+
 /// What a free period may do (relax-yarn --free-period, skein pattern --relax --free-period).
 struct PeriodOptions {
   bool free = false;        ///< relax the period too (periodic patches only; CPU)
@@ -39,10 +43,13 @@ struct PeriodOptions {
   /// model's stockinette lowers its energy by under 1 % by shearing a third of a stitch (a soft mode that friction,
   /// which the model lacks, holds in real fabric).
   bool shear = false;
+  /// With free: which of the two lengths relax; a length held stays at its given value (`--free-period x` finds
+  /// the stress-free width of a rib at the row height a gauge sets).
+  bool free_x = true, free_y = true;
   /// Converged when every free component's stress (dE/dL per length of the cut it acts across) is at most
   /// this times the yarn's bending force per length B / r³ (the stop rule's scale, StopRule).
   double tolerance = 1e-3;
-  void validate() const;    ///< throws skein::Error for a tolerance that is not positive
+  void validate() const;    ///< throws skein::Error for a tolerance that is not positive or no length free
 };
 
 /// The period's degrees of freedom: L_x = period_x.x, L_y = period_y.y and, with shear, s = period_y.x (period_x

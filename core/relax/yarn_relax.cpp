@@ -1,4 +1,5 @@
 #include "relax/yarn_relax.hpp"
+#include "relax/lbfgs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -122,6 +123,10 @@ void YarnRelaxOptions::validate() const {
   check_param(jam_drop, "jam_drop");
   if (jam_steps < 0) throw Error("", "yarn relaxation", "jam_steps must be 0 (never) or more, found " + std::to_string(jam_steps));
   if (active_set.enabled) active_set.validate();
+  if (active_set.enabled && method == YarnMethod::Lbfgs)
+    throw Error("", "--active-set", "works with fire or euler: L-BFGS moves every point along one direction");
+  if (lbfgs_memory < 1 || lbfgs_memory > 100)
+    throw Error("", "yarn relaxation", "the L-BFGS memory must be 1 to 100 moves, found " + std::to_string(lbfgs_memory));
   sampling.validate();
   if (guard.max_move > 0.5 * contact_margin)
     throw Error("", "yarn relaxation", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin (" +
@@ -146,10 +151,18 @@ YarnParams radius_scaled(const YarnParams& params, double gamma) {
 YarnMethod parse_yarn_method(const std::string& name) {
   if (name == "euler") return YarnMethod::Euler;
   if (name == "fire") return YarnMethod::Fire;
-  throw Error("", "--method", "expected euler or fire, found '" + name + "'");
+  if (name == "lbfgs") return YarnMethod::Lbfgs;
+  throw Error("", "--method", "expected euler, fire or lbfgs, found '" + name + "'");
 }
 
-std::string to_string(YarnMethod method) { return method == YarnMethod::Euler ? "euler" : "fire"; }
+std::string to_string(YarnMethod method) {
+  switch (method) {
+    case YarnMethod::Euler: return "euler";
+    case YarnMethod::Fire: return "fire";
+    case YarnMethod::Lbfgs: return "lbfgs";
+  }
+  return "fire";
+}
 
 StopRule parse_stop_rule(const std::string& name) {
   if (name == "force") return StopRule::Force;
@@ -288,7 +301,7 @@ class CpuYarnRelaxer final : public YarnRelaxer {
 public:
   CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
       : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
-        m_changed(system.num_points(), 1), m_periodic(targets.periodic) {
+        m_changed(system.num_points(), 1), m_periodic(targets.periodic), m_lbfgs(options.lbfgs_memory) {
     m_options.validate();
     if (m_options.period.free && (m_periodic.virtual_points.empty() || m_periodic.cells.size() != m_periodic.virtual_points.size()))
       throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");
@@ -354,6 +367,7 @@ public:
         }
         state.time_step *= 0.5;
         ++state.rollbacks;
+        forget_lbfgs(0.5);
         m_forces.invalidate();
         if (m_active) m_active->wake_all();
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state, step {:.3g} s", state.step, state.time_step);
@@ -365,6 +379,10 @@ public:
         continue;
       }
       failures = 0;
+      // L-BFGS after a rollback: shorter moves, lengthening again step by step. No line search and no test of the
+      // energy (as atomistic relaxers do): a periodic patch's energy is not the one its real points' forces
+      // descend (its virtual points' own terms count in it), and testing it stalls the run (docs/yarn-relaxation.md).
+      if (m_options.method == YarnMethod::Lbfgs) m_lbfgs_trust = std::min(1.0, m_lbfgs_trust * 1.1);
       good_points = state.points;
       good_velocities = state.velocities;
       good_period = state.period;
@@ -443,8 +461,15 @@ public:
       const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + delta).size()) : 0;
       state.pull_through_events += crossings;
       state.points += delta;
-      // The velocity that matches the move the guard let through.
-      if (scale < 1) state.velocities = delta / dt;
+      if (m_options.method == YarnMethod::Lbfgs) {
+        // The move taken, after the guard: the secant pair's s (real points only). A free period moves by its
+        // own Rprop steps, outside the memory.
+        m_lbfgs_move = delta;
+        if (!m_periodic.empty()) constrain_gradient(m_periodic, m_lbfgs_move);
+        m_lbfgs_moved = true;
+      } else if (scale < 1) {
+        state.velocities = delta / dt;  // the velocity that matches the move the guard let through
+      }
       if (cell) state.pull_through_events += period_step(*cell, state, limit / 1.25, delta);
       ++state.step;
       mark_changed(state, delta);
@@ -490,6 +515,12 @@ public:
       report.period = state.period;
       report.period_stress = cell->stress() / force_scale;
       report.repeat_energy = cell->energy();
+    } else if (!m_periodic.virtual_points.empty() && m_periodic.cells.size() == m_periodic.virtual_points.size()) {
+      // A fixed period's stress says how far it is from the repeat's stress-free one (and its sign, which way).
+      report.period << m_periodic.period_x, m_periodic.period_y;
+      const CellStress stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
+      report.period_stress = period_stresses(stress, report.period) / force_scale;
+      report.repeat_energy = stress.energy;
     }
     report.energy = energy;
     report.contacts = m_pairs.pairs();
@@ -510,14 +541,21 @@ private:
     m_moved_since_rebuild = 0;
   }
 
-  /// A free period's step (after the control points' one): the repeat's stress at the new positions, a move of
-  /// the period that carries every virtual point with its cell, passed through the guard on its own and taken
-  /// only whole (a virtual point must stay its real point plus its offset). The move is added to `delta`;
-  /// returns the auditor's crossings in it.
+  /// A free period's Rprop step for Euler and FIRE (after the control points' one): the repeat's stress at the
+  /// new positions and the move it proposes (move_period); returns the auditor's crossings in it.
   long period_step(PeriodRelaxer& cell, YarnState& state, double largest_move, Eigen::Matrix3Xd& delta) {
     const auto stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
-    const Eigen::Matrix<double, 3, 2> next = cell.propose(stress, m_periodic, largest_move), change = next - state.period;
-    if (change.isZero()) return 0;
+    long crossings = 0;
+    if (!move_period(cell, state, cell.propose(stress, m_periodic, largest_move), delta, crossings)) cell.reject();
+    return crossings;
+  }
+
+  /// The period moved to `next`, every virtual point carried with its cell, if the guard lets the move through
+  /// whole (a virtual point must stay its real point plus its offset): then the move is added to `delta`, the
+  /// auditor's crossings in it to `crossings`, and it returns true.
+  bool move_period(PeriodRelaxer& cell, YarnState& state, const Eigen::Matrix<double, 3, 2>& next, Eigen::Matrix3Xd& delta, long& crossings) {
+    const Eigen::Matrix<double, 3, 2> change = next - state.period;
+    if (change.isZero()) return true;
     Eigen::Matrix3Xd move = Eigen::Matrix3Xd::Zero(3, m_system.num_points());
     for (size_t i = 0; i < m_periodic.virtual_points.size(); ++i)
       move.col(m_periodic.virtual_points[i]) = change * m_periodic.cells[i].cast<double>();
@@ -528,16 +566,13 @@ private:
     counters = m_guard->counters();
     --counters.steps;  // one step, two passes
     m_guard->set_counters(counters);
-    if (held > 0 || !(guarded - move).isZero()) {
-      cell.reject();
-      return 0;
-    }
-    const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
+    if (held > 0 || !(guarded - move).isZero()) return false;
+    crossings += m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
     set_period(m_periodic, state.points, next.col(0), next.col(1));
     state.period = next;
     cell.accept(next);
     delta += move;
-    return crossings;
+    return true;
   }
 
   /// Which points the next evaluation must see as changed: those that moved, and for Euler's damping those
@@ -589,6 +624,18 @@ private:
       delta = dt * state.velocities;
       return dt;
     }
+    if (m_options.method == YarnMethod::Lbfgs) {
+      if (m_lbfgs_moved) m_lbfgs.remember(m_lbfgs_move, grad - m_lbfgs_grad);
+      m_lbfgs_grad = grad;
+      delta = m_lbfgs.direction(grad);
+      // The whole move scaled (its direction kept) so that no point goes further than the trusted share of ε r / 1.25.
+      double largest = 0;
+      for (int p = 0; p < n; ++p) largest = std::max(largest, delta.col(p).norm());
+      const double clamp = m_lbfgs_trust * limit / 1.25;
+      if (largest > 0 && (largest > clamp || m_lbfgs.empty())) delta *= clamp / largest;
+      state.velocities.setZero();
+      return 1.0;
+    }
     // FIRE (Bitzek et al. 2006) on the forces, semi-implicit.
     Eigen::Matrix3Xd force = -grad;
 #pragma omp parallel for schedule(static)
@@ -631,6 +678,16 @@ private:
   ContactPairs m_pairs;
   YarnForces m_forces;
   std::vector<char> m_changed;   ///< per point: moved (or for Euler its velocity changed) since the last evaluation
+  LbfgsMemory m_lbfgs;           ///< L-BFGS: the remembered moves and gradient changes
+  Eigen::Matrix3Xd m_lbfgs_grad, m_lbfgs_move;  ///< L-BFGS: the last step's gradient and the move it took
+  bool m_lbfgs_moved = false;    ///< L-BFGS: a move was taken since the memory was last forgotten
+  double m_lbfgs_trust = 1;      ///< L-BFGS: the share of the movement limit a move may use
+
+  void forget_lbfgs(double shrink) {
+    m_lbfgs.forget();
+    m_lbfgs_moved = false;
+    m_lbfgs_trust = std::max(1e-3, m_lbfgs_trust * shrink);
+  }
   Eigen::Matrix3Xd m_velocities;  ///< Euler: the velocities of the last evaluation
   std::optional<ActiveSet> m_active;
   double m_moved_since_rebuild = 0;

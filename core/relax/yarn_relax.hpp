@@ -99,8 +99,11 @@ double largest_force_per_length(const YarnSystem& system, const Eigen::Matrix3Xd
 enum class YarnMethod {
   Euler,  ///< semi-implicit Euler with the per-sample step bound of Leaf eq. 2 (Leaf Algorithm 1)
   Fire,   ///< FIRE (Bitzek et al. 2006), a quasi-static descent with inertia; every point clamped to ε r
+  /// L-BFGS (Liu and Nocedal 1989): a quasi-Newton descent from the last `lbfgs_memory` moves and force changes,
+  /// the whole move scaled down until no point goes further than ε r / 1.25; CPU only
+  Lbfgs,
 };
-YarnMethod parse_yarn_method(const std::string& name);  ///< "euler" or "fire"; throws skein::Error otherwise
+YarnMethod parse_yarn_method(const std::string& name);  ///< "euler", "fire" or "lbfgs"; throws skein::Error otherwise
 std::string to_string(YarnMethod method);
 
 /// Where a run's steps are computed. Auto: CUDA when skein was built with it and a GPU answers, else the
@@ -116,6 +119,7 @@ struct YarnRelaxOptions {
   double contact_margin = 1.0;  ///< [r]: pairs this far beyond touching are cached; rebuilt after half of it is used
   double time_step = 0;         ///< [s] Euler's step and FIRE's first step; 0: 0.002 for Euler, 0.02 for FIRE
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
+  int lbfgs_memory = 8;         ///< L-BFGS: the moves and force changes it remembers
   StopRule stop_rule = StopRule::Leaf;
   double force_tolerance = 0.5;  ///< StopRule::Force: the largest force per length / (B / r³)
   long stall_window = 50;       ///< StopRule::Force: steps over which the energy must have stalled
@@ -177,12 +181,13 @@ struct YarnRelaxReport {
   long steps = 0;
   double wall_seconds = 0, residual = 0, energy = 0;
   double force_residual = 0;  ///< the largest force per unit yarn length at the end, over B / r³ (StopRule::Force)
-  /// With a free period: the relaxed period (period_x, period_y) [mm] and the free components' stresses at the
-  /// end (dE/dL_x / L_y, dE/dL_y / L_x, dE/ds / L_x) over B / r³.
+  /// A periodic patch's period (period_x, period_y) [mm] at the end (relaxed with a free period, else the one it
+  /// was given; zero for yarn that is not a periodic patch) and its stresses there (dE/dL_x / L_y, dE/dL_y / L_x,
+  /// dE/ds / L_x; a fixed period's shear too, a free one's only when it may shear) over B / r³.
   bool free_period = false;
   Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Vector3d period_stress = Eigen::Vector3d::Zero();
-  double repeat_energy = 0;  ///< with a free period: one repeat's energy at the end (cell_stress)
+  double repeat_energy = 0;  ///< one repeat's energy at the end (cell_stress), with a period
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run

@@ -12,6 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "relax/yarn_io.hpp"
 #include "testing.hpp"
 
@@ -465,10 +467,15 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   EXPECT_NE(r.output.find("free period: the repeat relaxed to"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("stitches and"), std::string::npos) << r.output;
   const auto report = slurp(dir / "r.json");
-  for (const char* key : {"\"free_period\"", "\"gauge_per_10cm\"", "\"Kc\"", "\"Kw\"", "\"loop_length_mm\"", "\"repeat_mm\"", "\"stop_rule\": \"leaf\"",
+  for (const char* key : {"\"free_period\"", "\"gauge_per_10cm\"", "\"Kc\"", "\"Kw\"", "\"loop_length_mm\"", "\"repeat_mm\"", "\"stop_rule\": \"force\"", "\"method\": \"lbfgs\"", "\"rows_apart\": false",
                           "\"force_residual\"", "\"converged\": true", "\"pull_through_events\": 0"})
     EXPECT_NE(report.find(key), std::string::npos) << key << "\n" << report;
   EXPECT_NE(slurp(dir / "log.csv").find(",force,period_x,period_y\n"), std::string::npos);
+  // --free-period without a value frees the width only: the rows keep the emitted 5 mm (frictionless yarn's
+  // rows slide apart when their height is free too).
+  const auto repeat = nlohmann::json::parse(report)["free_period"]["repeat_mm"];
+  EXPECT_EQ(repeat[1].get<double>(), 5.0);
+  EXPECT_GT(repeat[0].get<double>(), 6.0);
   // The preview is tiled at the relaxed period: wider than the emitted 2 x 6 mm.
   const auto preview = skein::relax::read_bcc(dir / "p.bcc");
   double lo = 1e9, hi = -1e9;
@@ -637,7 +644,7 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   msg = error_for("spacing.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"contact_spacing": 4}})");
   EXPECT_NE(msg.find("key 'relax_yarn.contact_spacing'"), std::string::npos) << msg;
   msg = error_for("method.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"method": "rk4"}})");
-  EXPECT_NE(msg.find("expected \"fire\" or \"euler\", found \"rk4\""), std::string::npos) << msg;
+  EXPECT_NE(msg.find("expected \"fire\", \"euler\" or \"lbfgs\", found \"rk4\""), std::string::npos) << msg;
   msg = error_for("rule.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"stop_rule": "relative"}})");
   EXPECT_NE(msg.find("key 'relax_yarn.stop_rule'"), std::string::npos) << msg;
   msg = error_for("force.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"stop_rule": "force", "force_tolerance": 0}})");

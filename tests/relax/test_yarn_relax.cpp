@@ -427,7 +427,7 @@ TEST(YarnRelax, OptionsAreValidated) {
   o = {};
   o.checkpoint_every = 10;
   EXPECT_NE(skein::testing::error_of([&] { o.validate(); }).find("needs a checkpoint file"), std::string::npos);
-  EXPECT_NE(skein::testing::error_of([] { parse_yarn_method("newton"); }).find("expected euler or fire"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([] { parse_yarn_method("newton"); }).find("expected euler, fire or lbfgs"), std::string::npos);
 }
 
 namespace {
