@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Relaxed fabric against real fabric (issue 24; docs/BENCHMARKS.md "Relaxed fabric"): periodic patches relaxed
-# with a free period (variable cell) to their stress-free repeat.
-#  1. Plain knit (stockinette) at four loop lengths (stitch sizes) and two yarn radii: Munden's dimensional
-#     constants Kc = courses per length x loop length and Kw = wales per length x loop length, against relaxed
-#     plain knit (dry relaxed Kc ~ 5.0, Kw ~ 3.8-4.0; fully relaxed ~ 5.5 and 4.2; Kc/Kw ~ 1.3), and Doyle's
-#     independence of the yarn diameter.
+# with a free width (variable cell, --free-period x: the rows held at the height they are emitted at) to their
+# stress-free repeat, by L-BFGS under the force stop rule (skein pattern's defaults).
+#  1. Plain knit (stockinette) at four loop lengths (stitch sizes) and two yarn radii: Munden's constant Kw =
+#     wales per length x loop length against relaxed plain knit (dry relaxed ~ 3.8-4.0, fully relaxed ~ 4.2), and
+#     Doyle's independence of the yarn diameter (Kc = courses per length x loop length is set by the held rows).
 #  2. Stockinette, garter, 1x1 and 2x2 rib and seed at one yarn and loop length: width per wale and height per
 #     course, against stockinette's.
 # Usage: bench/fabric_runs.sh   (prints markdown tables; a run at a time, 2 threads)
@@ -12,7 +12,7 @@ source "$(dirname "$0")/common.sh"
 run() {  # run NAME PATTERN ARGS...: a free-period relaxation, its report in $tmp/NAME.json
   local name=$1 pattern=$2
   shift 2
-  "$skein" -q pattern "patterns/$pattern.knit" --relax --free-period --no-audit -o "$tmp/$name.bcc" --report "$tmp/$name.json" "$@"
+  "$skein" -q pattern "patterns/$pattern.knit" --relax --free-period x --no-audit -o "$tmp/$name.bcc" --report "$tmp/$name.json" "$@"
 }
 echo "| stitch emitted [mm] | yarn radius [mm] | loop length l [mm] | relaxed repeat [mm] | Kc | Kw | Kc/Kw | steps | s |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"

@@ -314,6 +314,9 @@ int main(int argc, char** argv) {
                                                 "stalled) or leaf (eq. 5, relative to the first step), as relax-yarn's")
       ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
   pat->add_option("--force-tolerance", pat_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
+  pat->add_option("--stall-window", pat_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
+  pat->add_option("--energy-stall", pat_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
+      ->capture_default_str();
   std::string pat_free_axes;
   pat->add_option("--free-period", pat_free_axes,
                   "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report; "

@@ -122,7 +122,7 @@ struct YarnRelaxOptions {
   int lbfgs_memory = 8;         ///< L-BFGS: the moves and force changes it remembers
   StopRule stop_rule = StopRule::Leaf;
   double force_tolerance = 0.5;  ///< StopRule::Force: the largest force per length / (B / r³)
-  long stall_window = 50;       ///< StopRule::Force: steps over which the energy must have stalled
+  long stall_window = 200;      ///< StopRule::Force: steps over which the energy must have stalled
   double energy_stall = 1e-4;   ///< StopRule::Force: the energy's fall over the window, a share of itself
   double tolerance = 0.01;      ///< Leaf eq. 5, ε1: |∇E| / |∇E_0|
   double stall = 0.05;          ///< Leaf eq. 5, ε2: | |∇E_i| / |∇E_i-1| - 1 |
