@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -420,6 +421,11 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       work(w);
     }
   };
+  // "Row 2 and all WS rows: Purl.": the instructions of every wrong-side row the text leaves out.
+  std::optional<Instructions> every_ws;
+  const auto implied_ws = [&](int up_to) {  // the left-out wrong-side rows before row `up_to`
+    while (every_ws && static_cast<int>(rows.size()) + 1 < up_to && (rows.size() + 1) % 2 == 0) work(*every_ws);
+  };
   int line_no = 0;
   bool started = false;
   std::string description;
@@ -452,6 +458,23 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       again(a, again_m[2].matched ? std::stoi(again_m[2].str()) : a, line_no);
       continue;
     }
+    static const std::regex standing(
+        R"(^\s*(?:rows?\s+(\d+)\s+(?:and|&)\s+)?(?:all|every)\s+(?:ws|wrong[\s-]+side|even(?:[\s-]+numbered)?)\s+rows?\s*(?:\(\s*(?:ws|wrong\s+side)\s*\))?\s*[:.])",
+        std::regex::icase);
+    std::smatch standing_m;
+    if (std::regex_search(line, standing_m, standing)) {
+      // "Row 2 and all WS rows: ..." (or "All WS rows: ..."): the wrong-side rows the text leaves out, from here on.
+      const int first = standing_m[1].matched ? std::stoi(standing_m[1].str()) : 2;
+      if (round) throw Error(source, "line " + std::to_string(line_no), "names wrong-side rows, but the pattern is worked in rounds");
+      if (first % 2 != 0 || first != static_cast<int>(rows.size()) + 1 + (rows.size() % 2 == 0 ? 1 : 0))
+        throw Error(source, "line " + std::to_string(line_no),
+                    "says its wrong-side rows start at row " + std::to_string(first) + ", but the next wrong-side row is row " +
+                        std::to_string(rows.size() + 1 + (rows.size() % 2 == 0 ? 1 : 0)));
+      started = true;
+      every_ws = Instructions{lower(line.substr(static_cast<size_t>(standing_m.length(0)))), static_cast<int>(standing_m.length(0)), line_no, false};
+      implied_ws(first + 1);
+      continue;
+    }
     if (!row_header(line, h)) {
       if (lower(line).find("format written") != std::string::npos && !started) continue;
       static const std::regex heading(R"(^\s*(rows?|rnds?|rounds?)\s+\d)", std::regex::icase);
@@ -467,6 +490,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     if (started && h.round != round) throw Error(source, "line " + std::to_string(line_no), "mixes rows (worked flat) and rounds (in the round)");
     round = h.round;
     started = true;
+    implied_ws(h.first);
     const int expected = static_cast<int>(rows.size()) + 1;
     if (h.first != expected || h.last < h.first)
       throw Error(source, "line " + std::to_string(line_no),
@@ -488,6 +512,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       work({body, static_cast<int>(h.colon), line_no, right_side});
     }
   }
+  implied_ws(static_cast<int>(rows.size()) + 2);  // a pattern that ends on a right-side row ends with its wrong-side row
   if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
   if (p.note.empty()) p.note = description;
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -64,6 +65,11 @@ TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
       {"cable-4", "Panel of 8 sts.\nRow 1 (RS): P2, C4B, p2.\nRow 2: K2, p4, k2.\nRow 3: P2, k4, p2.\nRow 4: Rep Row 2.\n"},
       {"cable-4", "Rnd 1: p2, 2/2 RC, p2.\nRnds 2-4: p2, k4, p2.\n"},
       {"twisted-rib", "Rnd 1: *k1 tbl, p1; rep from *.\n"},
+      // Wrong-side rows said once for all, as stitch dictionaries write them.
+      {"honeycomb", "Multiple of 4 sts.\nRow 1 (RS): *Sl1 wyib, k3; rep from *.\nRow 2 and all WS rows: Purl.\n"
+                    "Row 3: K2, *sl1 wyib, k3; rep from * to last 2 sts, k2.\n"},
+      {"stockinette", "All WS rows: Purl.\nRow 1 (RS): Knit.\n"},
+      {"cable-4", "Panel of 8 sts.\nRow 1 (RS): P2, C4B, p2.\nRow 2 and all even-numbered rows: K2, p4, k2.\nRow 3: P2, k4, p2.\n"},
   };
   for (const auto& [name, text] : cases) {
     // Twisted rib is written with skein's k+1; a crossed knit (k1 tbl) is `x`: compare it as the same fabric.
@@ -99,6 +105,15 @@ TEST(WrittenPattern, WrongSideRowsAreReadLeftToRightAndSeenFromTheFront) {
   p = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/rib-2x2.txt");
   EXPECT_EQ(p.width(), 4);
   EXPECT_EQ(p.height(), 1);  // every row is k k p p from the front
+  // Every bundled written example reads; the eyelet rows' wrong-side rows are said once ("Row 2 and all WS
+  // rows: Purl."), and the one after its last right-side row is there too.
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(SKEIN_PATTERNS_DIR) + "/written")) {
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(mesh::read_pattern(entry.path()));
+  }
+  p = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/eyelet-rows.txt");
+  EXPECT_EQ(p.height(), 4);
+  EXPECT_EQ(p.rows[3], p.rows[0]);
   // Rows of different repeats widen to the least common multiple.
   p = mesh::parse_pattern("Rnd 1: *k1, p1; rep from *.\nRnd 2: *k1, p2; rep from *.\n", "m.txt");
   EXPECT_EQ(p.width(), 6);
@@ -124,9 +139,13 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"),
             "p.txt: line 1, column 17: a yarn-over has a stitch model only beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...): a lone "
             "yarn-over is an increase, and increases have no model yet");
-  EXPECT_EQ(error("Row 1: knit.\nRow 2 and all WS rows: purl.\n"),
+  EXPECT_EQ(error("Row 1: knit.\nRow 2 or so: purl.\n"),
             "p.txt: line 2: a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' "
             "(patterns/FORMAT.md)");
+  EXPECT_EQ(error("Row 1: knit.\nRow 4 and all WS rows: purl.\n"),
+            "p.txt: line 2: says its wrong-side rows start at row 4, but the next wrong-side row is row 2");
+  EXPECT_EQ(error("Rnd 1: knit.\nAll WS rows: purl.\n"), "p.txt: line 2: names wrong-side rows, but the pattern is worked in rounds");
+  EXPECT_EQ(error("All WS rows: purl.\nRnd 1: knit.\n"), "p.txt: line 2: mixes rows (worked flat) and rounds (in the round)");
   // Not a written pattern: skein's own format keeps its errors.
   EXPECT_FALSE(mesh::is_written_pattern("format knit\nk p\n"));
   EXPECT_TRUE(mesh::is_written_pattern("# a comment\nMultiple of 2.\nRow 1: k1, p1.\n"));
