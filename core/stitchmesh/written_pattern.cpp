@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -193,8 +194,14 @@ private:
         if (match(R"(\s*(?:x\s*(\d+)|(\d+)\s*(?:times|x)))", times)) {
           m_pos += static_cast<size_t>(times.length(0));
           g.times = std::stoi(times[1].matched ? times[1].str() : times[2].str());
-        } else if (match(R"(\s*(?:once))", times)) {
+        } else if (match(R"(\s*(once|twice|thrice|(?:one|two|three|four|five|six|seven|eight|nine|ten)\s+times))", times)) {
+          // As books write the count: "[k1, p1] twice", "(k2, p2) three times".
           m_pos += static_cast<size_t>(times.length(0));
+          static const std::array<const char*, 10> words = {"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"};
+          const std::string word = lower(times[1].str());
+          g.times = word == "once" ? 1 : word == "twice" ? 2 : word == "thrice" ? 3 : 0;
+          for (size_t k = 0; k < words.size() && g.times == 0; ++k)
+            if (word.rfind(words[k], 0) == 0 && std::isspace(static_cast<unsigned char>(word[std::strlen(words[k])]))) g.times = static_cast<int>(k) + 1;
         } else {
           fail(m_pos, "expected how many times the group is worked after it ('3 times' or 'x3')");
         }

@@ -59,6 +59,8 @@ TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
       {"honeycomb", "Multiple of 4 sts.\nRow 1 (RS): *Sl1 wyib, k3; rep from *.\nRow 2: Purl.\nRow 3: K2, *sl1 wyib, k3; rep from * to last 2 sts, k2.\n"
                     "Row 4: Purl.\n"},
       {"honeycomb", "Rnd 1: [k3, sl1 wyib] 3 times.\nRnd 2: knit.\nRnd 3: [k1, sl1, k2] 3 times.\nRnd 4: K to end.\n"},
+      {"honeycomb", "Rnd 1: [k3, sl1 wyib] twice.\nRnd 2: knit.\nRnd 3: (k1, sl1, k2) Two times.\nRnd 4: K to end.\n"},
+      {"rib-1x1", "Rnd 1: [k1, p1] thrice, (k1, p1) once, [k1, p1] four times.\n"},
       {"seed", "Row 1 (right side): *K1, p1; rep from * to last st, k1.\nRow 2 (wrong side): Rep Row 1.\n"},
       {"seed", "Rnd 1: *K1, p1; rep from *.\nRnd 2: *P1, k1; rep from *.\nRep Rnds 1 and 2.\n"},
       {"slip-rib", "Row 1 (RS): *sl 1 pwise wyib, k3; rep from * to end.\nRow 2 (WS): *p3, k1; rep from * to end.\n"},
