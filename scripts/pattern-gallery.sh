@@ -13,7 +13,8 @@ page=docs/pattern-gallery.md
 {
   echo "# Pattern gallery"
   echo
-  echo "Every bundled pattern (\`patterns/\`), its periodic patch relaxed with \`skein pattern FILE --relax\`, then tiled to"
+  echo "Every bundled pattern (\`patterns/\`), its periodic patch relaxed with \`skein pattern FILE --relax --method fire --stop-rule leaf\`"
+  echo "(the defaults before L-BFGS under the force rule: quicker, and short of the minimum; docs/BENCHMARKS.md), then tiled to"
   echo "about 12 x 12 stitches or yarns (\`--tile NxM --preview-png\`: the relaxed repeat placed over the tiling's yarn; the"
   echo "cast-on, bind-off and side turns only follow it) and drawn from the front. Made by \`scripts/pattern-gallery.sh\`."
   echo
@@ -24,7 +25,7 @@ for f in patterns/*.knit patterns/*.weave; do
   name=$(basename "$f"); name=${name%.*}
   "$skein" -q pattern "$f" -o "$tmp/out.bcc" --tile 1x1 --report "$tmp/size.json"
   tile=$(python3 -c "import json, math; w, h = json.load(open('$tmp/size.json'))['repeat']; print(f'{math.ceil(12 / w)}x{math.ceil(12 / h)}')")
-  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --no-audit --report "$tmp/r.json" --tile "$tile" --preview-png "$images/$name.png" \
+  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" --tile "$tile" --preview-png "$images/$name.png" \
     --views front --png-size 360
   python3 - "$f" "$tmp/r.json" "$name" >>"$page" <<'PY'
 import json, sys

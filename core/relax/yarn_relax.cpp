@@ -501,8 +501,13 @@ public:
       if (by_steps || by_time) {
         write_checkpoint(m_options.checkpoint, fingerprint, state);
         last_checkpoint = std::chrono::steady_clock::now();
-        // A resumed run starts with fresh contacts and safe bounds; so does this one, so both go on alike.
+        // A resumed run starts with fresh contacts and safe bounds, and L-BFGS with no memory (neither is in the
+        // checkpoint); so does this one, so both go on alike.
         refresh_contacts(state);
+        if (m_options.method == YarnMethod::Lbfgs) {
+          forget_lbfgs(1);
+          m_lbfgs_trust = 1;
+        }
       }
     }
     // The last state too, so that a run stopped by a cap goes on from where it stopped.

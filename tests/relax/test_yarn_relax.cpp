@@ -336,27 +336,31 @@ TEST(YarnRelax, RunsAreDeterministicForAnyThreadCount) {
 TEST(YarnCheckpoint, ResumeEqualsAnUninterruptedRun) {
   skein::testing::ScratchDir dir;
   const auto [piece, yarn, system, targets] = skein::testing::knitted(models::swatch(), "rib");
-  YarnRelaxOptions options;
-  options.max_steps = 70;
-  options.tolerance = 0;
-  options.checkpoint = dir / "run.ckp";
-  options.checkpoint_every = 25;
-  const auto whole = relaxed(system, options, targets);
-  ASSERT_EQ(whole.report.steps, 70);
-  // Interrupted at step 50 (the cap stands in for a killed job: the last checkpoint is from step 50), then resumed.
-  options.checkpoint = dir / "part.ckp";
-  options.max_steps = 50;
-  relaxed(system, options, targets);
-  auto state = read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points());
-  EXPECT_EQ(state.step, 50);
-  options.max_steps = 70;
-  const auto report = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  EXPECT_EQ(report.steps, 70);
-  EXPECT_EQ(state.points, whole.state.points);
-  EXPECT_EQ(state.velocities, whole.state.velocities);
-  EXPECT_EQ(report.guard.pairs_tested, whole.report.guard.pairs_tested);
-  // A run stopped by its cap leaves its last state behind.
-  EXPECT_EQ(read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points()).step, 70);
+  for (const auto method : {YarnMethod::Fire, YarnMethod::Lbfgs}) {
+    SCOPED_TRACE(to_string(method));
+    YarnRelaxOptions options;
+    options.method = method;
+    options.max_steps = 70;
+    options.tolerance = 0;
+    options.checkpoint = dir / "run.ckp";
+    options.checkpoint_every = 25;
+    const auto whole = relaxed(system, options, targets);
+    ASSERT_EQ(whole.report.steps, 70);
+    // Interrupted at step 50 (the cap stands in for a killed job: the last checkpoint is from step 50), then resumed.
+    options.checkpoint = dir / "part.ckp";
+    options.max_steps = 50;
+    relaxed(system, options, targets);
+    auto state = read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points());
+    EXPECT_EQ(state.step, 50);
+    options.max_steps = 70;
+    const auto report = make_cpu_yarn_relaxer(system, targets, options)->run(state);
+    EXPECT_EQ(report.steps, 70);
+    EXPECT_EQ(state.points, whole.state.points);
+    EXPECT_EQ(state.velocities, whole.state.velocities);
+    EXPECT_EQ(report.guard.pairs_tested, whole.report.guard.pairs_tested);
+    // A run stopped by its cap leaves its last state behind.
+    EXPECT_EQ(read_checkpoint(options.checkpoint, checkpoint_fingerprint(system, options.method), system.num_points()).step, 70);
+  }
 }
 
 TEST(YarnRelax, AnInterruptedRunGoesOnFromItsState) {
