@@ -301,7 +301,7 @@ class CpuYarnRelaxer final : public YarnRelaxer {
 public:
   CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
       : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
-        m_changed(system.num_points(), 1), m_periodic(targets.periodic), m_lbfgs(options.lbfgs_memory) {
+        m_changed(system.num_points(), 1), m_lbfgs(options.lbfgs_memory), m_periodic(targets.periodic) {
     m_options.validate();
     if (m_options.period.free && (m_periodic.virtual_points.empty() || m_periodic.cells.size() != m_periodic.virtual_points.size()))
       throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");

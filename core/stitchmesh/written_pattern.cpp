@@ -19,6 +19,10 @@ namespace {
 
 constexpr size_t kLongestLine = 4096;
 
+/// A count as written (the digits a pattern gives): its value, or a million for more than six digits, which
+/// every bound below refuses (std::stoi would throw out of range on a long one).
+int count_of(const std::string& digits) { return digits.size() > 6 ? 1000000 : std::stoi(digits); }
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
@@ -166,6 +170,7 @@ private:
     return nullptr;
   }
   void add(std::vector<Item>& items, Item item, int count) {
+    if (count < 1 || count > 1000) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': 1 to 1000 stitches");
     for (int i = 0; i < count; ++i) items.push_back(item);
   }
 
@@ -193,7 +198,7 @@ private:
         std::smatch times;
         if (match(R"(\s*(?:x\s*(\d+)|(\d+)\s*(?:times|x)))", times)) {
           m_pos += static_cast<size_t>(times.length(0));
-          g.times = std::stoi(times[1].matched ? times[1].str() : times[2].str());
+          g.times = count_of(times[1].matched ? times[1].str() : times[2].str());
         } else if (match(R"(\s*(once|twice|thrice|(?:one|two|three|four|five|six|seven|eight|nine|ten)\s+times))", times)) {
           // As books write the count: "[k1, p1] twice", "(k2, p2) three times".
           m_pos += static_cast<size_t>(times.length(0));
@@ -217,7 +222,7 @@ private:
         items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
       } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(wyib|wyif))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        const int n = m[1].length() ? std::stoi(m[1].str()) : 1;
+        const int n = m[1].length() ? count_of(m[1].str()) : 1;
         const bool front = m[2].matched && m[2].str() == "wyif";  // with the yarn toward the knitter
         // The float lies on the side the yarn is held: behind the fabric seen from the front is `s`, in front `sk`.
         const bool float_behind = front != m_rs;
@@ -227,14 +232,14 @@ private:
         if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
         int a = 0, b = 0, order = 1;
         if (m.str(0)[0] == 'c') {
-          const int n = std::stoi(m[1].str());
+          const int n = count_of(m[1].str());
           if (n % 2 != 0 || n < 2 || n > 6) fail(at, "'" + m.str(0) + "': cables of 2, 4 or 6 stitches (half over half) have models");
           a = b = n / 2;
           // CnB: the left half (seen from the front) crosses right, in front; CnF: the right half crosses left in
           // front, so the left half crosses right behind.
           order = m[2].str() == "b" ? 1 : -1;
         } else {
-          const int x = std::stoi(m[1].str()), y = std::stoi(m[2].str());
+          const int x = count_of(m[1].str()), y = count_of(m[2].str());
           const bool right = m[3].str()[0] == 'r';
           // A/B RC: the A stitches travel right in front; A/B LC: the A stitches travel left in front, so the B
           // stitches on their left cross right behind.
@@ -256,16 +261,15 @@ private:
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
       } else if (match(R"(yo(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        add(items, stitch(at, "yo", "y", ""), m[1].length() ? std::stoi(m[1].str()) : 1);
+        add(items, stitch(at, "yo", "y", ""), m[1].length() ? count_of(m[1].str()) : 1);
       } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
-        add(items, stitch(at, m.str(0), knit ? "x" : "", knit ? "" : "x"), m[2].length() ? std::stoi(m[2].str()) : 1);
+        add(items, stitch(at, m.str(0), knit ? "x" : "", knit ? "" : "x"), m[2].length() ? count_of(m[2].str()) : 1);
       } else if (match(R"((k|p)(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
-        const int n = m[2].length() ? std::stoi(m[2].str()) : 1;
-        if (n < 1 || n > 1000) fail(at, "'" + m.str(0) + "': 1 to 1000 stitches");
+        const int n = m[2].length() ? count_of(m[2].str()) : 1;
         add(items, stitch(at, m.str(0), knit ? "k" : "p", knit ? "p" : "k"), n);
       } else {
         size_t end = m_pos;
@@ -372,8 +376,8 @@ bool row_header(const std::string& line, RowHeader& h) {
   std::smatch m;
   if (!std::regex_search(line, m, re)) return false;
   h.round = lower(m[1].str())[1] == 'n' || lower(m[1].str()).rfind("round", 0) == 0;
-  h.first = std::stoi(m[2].str());
-  h.last = m[3].matched ? std::stoi(m[3].str()) : h.first;
+  h.first = count_of(m[2].str());
+  h.last = m[3].matched ? count_of(m[3].str()) : h.first;
   h.side = m[4].matched ? (lower(m[4].str())[0] == 'r' ? 1 : -1) : 0;
   h.colon = static_cast<size_t>(m.length(0));
   return true;
@@ -461,8 +465,8 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     std::smatch again_m;
     if (started && std::regex_search(line, again_m, again_line)) {
       // "Rep Rows 1 and 2 (for pattern)." on its own line: those rows once more, as the next rows.
-      const int a = std::stoi(again_m[1].str());
-      again(a, again_m[2].matched ? std::stoi(again_m[2].str()) : a, line_no);
+      const int a = count_of(again_m[1].str());
+      again(a, again_m[2].matched ? count_of(again_m[2].str()) : a, line_no);
       continue;
     }
     static const std::regex standing(
@@ -471,7 +475,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     std::smatch standing_m;
     if (std::regex_search(line, standing_m, standing)) {
       // "Row 2 and all WS rows: ..." (or "All WS rows: ..."): the wrong-side rows the text leaves out, from here on.
-      const int first = standing_m[1].matched ? std::stoi(standing_m[1].str()) : 2;
+      const int first = standing_m[1].matched ? count_of(standing_m[1].str()) : 2;
       if (round) throw Error(source, "line " + std::to_string(line_no), "names wrong-side rows, but the pattern is worked in rounds");
       if (first % 2 != 0 || first != static_cast<int>(rows.size()) + 1 + (rows.size() % 2 == 0 ? 1 : 0))
         throw Error(source, "line " + std::to_string(line_no),
@@ -510,7 +514,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     for (int r = h.first; r <= h.last; ++r) {
       const bool right_side = round || (h.side != 0 ? h.side > 0 : r % 2 == 1);
       if (std::regex_search(body, m, again_line)) {
-        const int a = std::stoi(m[1].str()), b = m[2].matched ? std::stoi(m[2].str()) : a;
+        const int a = count_of(m[1].str()), b = m[2].matched ? count_of(m[2].str()) : a;
         if (b - a > h.last - r) throw Error(source, "line " + std::to_string(line_no), "repeats more rows than its heading names");
         again(a, b, line_no);
         r += b - a;

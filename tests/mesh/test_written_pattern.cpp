@@ -144,6 +144,12 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_EQ(error("Row 1: knit.\nRow 2 or so: purl.\n"),
             "p.txt: line 2: a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' "
             "(patterns/FORMAT.md)");
+  // Counts too long for an int (found by fuzzing) and counts that would make millions of stitches.
+  EXPECT_EQ(error("Row 1 (RS): K2111111111111111111111111111111111111, *p2, k2; rep from * to end.\n"),
+            "p.txt: line 1, column 13: 'k2111111111111111111111111111111111111': 1 to 1000 stitches");
+  EXPECT_EQ(error("Rnd 1: yo999999999, k2tog.\n"), "p.txt: line 1, column 8: 'yo': 1 to 1000 stitches");
+  EXPECT_EQ(error("Rnd 1: sl99999999999 wyib, k1.\n"), "p.txt: line 1, column 8: 'sl99999999999 wyib': 1 to 1000 stitches");
+  EXPECT_EQ(error("Rnd 99999999999: k.\n"), "p.txt: line 1: round 1000000 comes where round 1 was expected (rows are numbered from 1, in order)");
   EXPECT_EQ(error("Row 1: knit.\nRow 4 and all WS rows: purl.\n"),
             "p.txt: line 2: says its wrong-side rows start at row 4, but the next wrong-side row is row 2");
   EXPECT_EQ(error("Rnd 1: knit.\nAll WS rows: purl.\n"), "p.txt: line 2: names wrong-side rows, but the pattern is worked in rounds");
