@@ -546,21 +546,14 @@ private:
     m_moved_since_rebuild = 0;
   }
 
-  /// A free period's Rprop step for Euler and FIRE (after the control points' one): the repeat's stress at the
-  /// new positions and the move it proposes (move_period); returns the auditor's crossings in it.
+  /// A free period's step (after the control points' one): the repeat's stress at the new positions, a move of
+  /// the period (Rprop) that carries every virtual point with its cell, passed through the guard on its own and
+  /// taken only whole (a virtual point must stay its real point plus its offset). The move is added to `delta`;
+  /// returns the auditor's crossings in it.
   long period_step(PeriodRelaxer& cell, YarnState& state, double largest_move, Eigen::Matrix3Xd& delta) {
     const auto stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
-    long crossings = 0;
-    if (!move_period(cell, state, cell.propose(stress, m_periodic, largest_move), delta, crossings)) cell.reject();
-    return crossings;
-  }
-
-  /// The period moved to `next`, every virtual point carried with its cell, if the guard lets the move through
-  /// whole (a virtual point must stay its real point plus its offset): then the move is added to `delta`, the
-  /// auditor's crossings in it to `crossings`, and it returns true.
-  bool move_period(PeriodRelaxer& cell, YarnState& state, const Eigen::Matrix<double, 3, 2>& next, Eigen::Matrix3Xd& delta, long& crossings) {
-    const Eigen::Matrix<double, 3, 2> change = next - state.period;
-    if (change.isZero()) return true;
+    const Eigen::Matrix<double, 3, 2> next = cell.propose(stress, m_periodic, largest_move), change = next - state.period;
+    if (change.isZero()) return 0;
     Eigen::Matrix3Xd move = Eigen::Matrix3Xd::Zero(3, m_system.num_points());
     for (size_t i = 0; i < m_periodic.virtual_points.size(); ++i)
       move.col(m_periodic.virtual_points[i]) = change * m_periodic.cells[i].cast<double>();
@@ -571,13 +564,16 @@ private:
     counters = m_guard->counters();
     --counters.steps;  // one step, two passes
     m_guard->set_counters(counters);
-    if (held > 0 || !(guarded - move).isZero()) return false;
-    crossings += m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
+    if (held > 0 || !(guarded - move).isZero()) {
+      cell.reject();
+      return 0;
+    }
+    const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
     set_period(m_periodic, state.points, next.col(0), next.col(1));
     state.period = next;
     cell.accept(next);
     delta += move;
-    return true;
+    return crossings;
   }
 
   /// Which points the next evaluation must see as changed: those that moved, and for Euler's damping those
