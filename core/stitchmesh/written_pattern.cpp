@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -22,6 +21,20 @@ constexpr size_t kLongestLine = 4096;
 /// A count as written (the digits a pattern gives): its value, or a million for more than six digits, which
 /// every bound below refuses (std::stoi would throw out of range on a long one).
 int count_of(const std::string& digits) { return digits.size() > 6 ? 1000000 : std::stoi(digits); }
+
+/// The counts books write in words, and digits: "once", "twice", "thrice", "one" to "ten"; 0 for none of them.
+int count_in_words(const std::string& text) {
+  static const std::array<const char*, 10> words = {"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"};
+  std::string word;
+  for (char c : text) word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!word.empty() && std::all_of(word.begin(), word.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) return count_of(word);
+  if (word == "once") return 1;
+  if (word == "twice") return 2;
+  if (word == "thrice") return 3;
+  for (size_t k = 0; k < words.size(); ++k)
+    if (word == words[k]) return static_cast<int>(k) + 1;
+  return 0;
+}
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -202,11 +215,8 @@ private:
         } else if (match(R"(\s*(once|twice|thrice|(?:one|two|three|four|five|six|seven|eight|nine|ten)\s+times))", times)) {
           // As books write the count: "[k1, p1] twice", "(k2, p2) three times".
           m_pos += static_cast<size_t>(times.length(0));
-          static const std::array<const char*, 10> words = {"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"};
-          const std::string word = lower(times[1].str());
-          g.times = word == "once" ? 1 : word == "twice" ? 2 : word == "thrice" ? 3 : 0;
-          for (size_t k = 0; k < words.size() && g.times == 0; ++k)
-            if (word.rfind(words[k], 0) == 0 && std::isspace(static_cast<unsigned char>(word[std::strlen(words[k])]))) g.times = static_cast<int>(k) + 1;
+          const std::string said = times[1].str();
+          g.times = count_in_words(said.substr(0, said.find_first_of(" \t")));
         } else {
           fail(m_pos, "expected how many times the group is worked after it ('3 times' or 'x3')");
         }
@@ -402,6 +412,57 @@ bool is_written_pattern(const std::string& text) {
   return false;
 }
 
+namespace {
+/// "Rep Rows 1 and 2", "Rep Rows 3-6 twice more", "Rep last 2 rows 3 times more", "Rep the last row", "Rep Row 1 for patt": the rows a
+/// line repeats, as a row's instructions or on a line of its own.
+const std::regex again_line(
+    R"(^\s*rep(?:eat)?\.?\s+(?:(?:rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|through|thru|&)\s*(\d+))?|(?:the\s+)?last\s+(?:(\w+)\s+)?(?:rows?|rnds?|rounds?))(?:\s+(\w+)(\s+more)?(?:\s+times?)?(\s+more)?)?(?:\s+for\s+(?:the\s+)?patt(?:ern)?)?\s*\.?\s*$)",
+    std::regex::icase);
+
+struct RowsAgain {
+  int first = 0, last = 0;  ///< rows first..last (1-based) ...
+  int times = 1;            ///< ... worked this many times more
+};
+
+/// The rows an `again_line` match repeats, `written` rows being above it. `heading_rows` is the number of rows its
+/// heading has left ("Rows 5-12: Rep Rows 1-4 twice."), or 0 on a line of its own: there a count must say "more"
+/// ("twice more", "3 more times"), since "Rep Rows 1 and 2 three times" reads either way; under a heading the
+/// rows the heading names must be what the count makes. Throws skein::Error naming `source` and the line.
+RowsAgain rows_again(const std::smatch& m, int written, int line, int heading_rows, const std::string& source) {
+  const std::string where = "line " + std::to_string(line);
+  RowsAgain out;
+  if (!m[1].matched) {  // "the last N rows", "the last row"
+    const int n = m[3].matched ? count_in_words(m[3].str()) : 1;
+    if (n < 1) throw Error(source, where, "cannot read '" + m[3].str() + "' as a number of rows");
+    if (n > written) throw Error(source, where, "repeats the last " + std::to_string(n) + " rows, but " + std::to_string(written) + " are written above it");
+    out.first = written - n + 1;
+    out.last = written;
+  } else {
+    out.first = count_of(m[1].str());
+    out.last = m[2].matched ? count_of(m[2].str()) : out.first;
+  }
+  if (out.first < 1 || out.last < out.first || out.last > written)
+    throw Error(source, where, "repeats rows " + std::to_string(out.first) + "-" + std::to_string(out.last) + ", which are not all written above it");
+  const int span = out.last - out.first + 1;
+  if (m[4].matched) {
+    out.times = count_in_words(m[4].str());
+    if (out.times < 1) throw Error(source, where, "cannot read '" + m[4].str() + "' as how many times the rows are repeated");
+    if (out.times > 1000) throw Error(source, where, "repeats its rows more than 1000 times");
+    if (heading_rows == 0 && !m[5].matched && !m[6].matched)
+      throw Error(source, where, "says how many times without 'more', which reads two ways: write '" + m[4].str() +
+                                     " more times' (the rows again that many times), or give the rows a heading ('Rows N-M: Rep ...')");
+    if (heading_rows > 0 && out.times * span != heading_rows)
+      throw Error(source, where, "repeats " + std::to_string(span) + " rows " + std::to_string(out.times) + " times, " + std::to_string(out.times * span) +
+                                     " rows, but its heading names " + std::to_string(heading_rows));
+  } else if (heading_rows > 0) {
+    // "Rows 5-8: Rep Rows 1-4." (or "Rows 5-12: Rep Rows 1-4"): the rows as often as the heading has room for.
+    if (span > heading_rows) throw Error(source, where, "repeats more rows than its heading names");
+    out.times = 1;
+  }
+  return out;
+}
+}  // namespace
+
 Pattern parse_written_pattern(const std::string& text, const std::string& source) {
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();
@@ -422,9 +483,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     said.push_back(w);
   };
   // Rows a..b once more as the next rows: "Rep Row 1" on a wrong-side row is worked from the wrong side.
-  const auto again = [&](int a, int b, int line) {
-    if (a < 1 || b < a || b > static_cast<int>(said.size()))
-      throw Error(source, "line " + std::to_string(line), "repeats rows " + std::to_string(a) + "-" + std::to_string(b) + ", which are not all written above it");
+  const auto again = [&](int a, int b) {
     for (int k = a; k <= b; ++k) {
       Instructions w = said[k - 1];
       const int number = static_cast<int>(rows.size()) + 1;
@@ -460,13 +519,12 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     }
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     RowHeader h;
-    static const std::regex again_line(R"(^\s*rep(?:eat)?\.?\s+(?:rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?(?:\s+for\s+(?:the\s+)?patt(?:ern)?)?\s*\.?\s*$)",
-                                        std::regex::icase);
     std::smatch again_m;
     if (started && std::regex_search(line, again_m, again_line)) {
-      // "Rep Rows 1 and 2 (for pattern)." on its own line: those rows once more, as the next rows.
-      const int a = count_of(again_m[1].str());
-      again(a, again_m[2].matched ? count_of(again_m[2].str()) : a, line_no);
+      // "Rep Rows 1 and 2 (for pattern).", "Rep Rows 3-6 twice more.", "Rep last 2 rows 3 times more." on a line
+      // of their own: those rows once more, or as many times more as said, as the next rows.
+      const RowsAgain r = rows_again(again_m, static_cast<int>(rows.size()), line_no, 0, source);
+      for (int k = 0; k < r.times; ++k) again(r.first, r.last);
       continue;
     }
     static const std::regex standing(
@@ -514,10 +572,9 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     for (int r = h.first; r <= h.last; ++r) {
       const bool right_side = round || (h.side != 0 ? h.side > 0 : r % 2 == 1);
       if (std::regex_search(body, m, again_line)) {
-        const int a = count_of(m[1].str()), b = m[2].matched ? count_of(m[2].str()) : a;
-        if (b - a > h.last - r) throw Error(source, "line " + std::to_string(line_no), "repeats more rows than its heading names");
-        again(a, b, line_no);
-        r += b - a;
+        const RowsAgain again_rows = rows_again(m, static_cast<int>(rows.size()), line_no, h.last - r + 1, source);
+        for (int k = 0; k < again_rows.times; ++k) again(again_rows.first, again_rows.last);
+        r += again_rows.times * (again_rows.last - again_rows.first + 1) - 1;
         continue;
       }
       work({body, static_cast<int>(h.colon), line_no, right_side});

@@ -121,6 +121,24 @@ TEST(WrittenPattern, WrongSideRowsAreReadLeftToRightAndSeenFromTheFront) {
   EXPECT_EQ(p.width(), 6);
 }
 
+TEST(WrittenPattern, RowsRepeatedAsManyTimesMoreAsSaid) {
+  // Six rows of stockinette and a garter ridge, written out, and written as books shorten them; rows repeated
+  // are worked from the side the new rows are on (the last row, a wrong-side purl, again on the right side).
+  const auto plain = mesh::parse_pattern("Row 1 (RS): knit.\nRow 2: purl.\nRow 3: knit.\nRow 4: purl.\nRow 5: knit.\nRow 6: purl.\nRow 7: purl.\nRow 8: knit.\n", "a.txt");
+  ASSERT_EQ(plain.height(), 8);
+  for (const char* text : {"Row 1 (RS): knit.\nRow 2: purl.\nRep Rows 1 and 2 twice more.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRep Rows 1-2 2 more times.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRep last 2 rows 2 times more.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRep Rows 1 and 2 once more.\nRep the last 2 rows once more.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRows 3-6: Rep Rows 1 and 2 twice.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRows 3-6: Rep Rows 1 and 2.\nRow 7: purl.\nRow 8: knit.\n",
+                           "Row 1 (RS): knit.\nRow 2: purl.\nRep Rows 1 and 2 twice more.\nRep the last row.\nRow 8: knit.\n"}) {
+    SCOPED_TRACE(text);
+    const auto p = mesh::parse_pattern(text, "b.txt");
+    EXPECT_EQ(p.rows, plain.rows);
+  }
+}
+
 TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
@@ -154,6 +172,14 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
             "p.txt: line 2: says its wrong-side rows start at row 4, but the next wrong-side row is row 2");
   EXPECT_EQ(error("Rnd 1: knit.\nAll WS rows: purl.\n"), "p.txt: line 2: names wrong-side rows, but the pattern is worked in rounds");
   EXPECT_EQ(error("All WS rows: purl.\nRnd 1: knit.\n"), "p.txt: line 2: mixes rows (worked flat) and rounds (in the round)");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2: purl.\nRep Rows 1 and 2 three times.\n"),
+            "p.txt: line 3: says how many times without 'more', which reads two ways: write 'three more times' (the rows again that many times), "
+            "or give the rows a heading ('Rows N-M: Rep ...')");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2: purl.\nRows 3-6: Rep Rows 1 and 2 three times.\n"),
+            "p.txt: line 3: repeats 2 rows 3 times, 6 rows, but its heading names 4");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2: purl.\nRep last 3 rows once more.\n"), "p.txt: line 3: repeats the last 3 rows, but 2 are written above it");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2: purl.\nRep Rows 2 and 3 once more.\n"), "p.txt: line 3: repeats rows 2-3, which are not all written above it");
+  EXPECT_EQ(error("Row 1: knit.\nRow 2: purl.\nRep Rows 1 and 2 99999999 more times.\n"), "p.txt: line 3: repeats its rows more than 1000 times");
   // Not a written pattern: skein's own format keeps its errors.
   EXPECT_FALSE(mesh::is_written_pattern("format knit\nk p\n"));
   EXPECT_TRUE(mesh::is_written_pattern("# a comment\nMultiple of 2.\nRow 1: k1, p1.\n"));
