@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/written_pattern.hpp"
@@ -83,6 +84,7 @@ int Pattern::stitches() const {
 }
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
+  if (is_chart_pattern(text)) return parse_chart_pattern(text, source);
   if (is_written_pattern(text)) return parse_written_pattern(text, source);
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();

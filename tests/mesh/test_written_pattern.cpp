@@ -185,3 +185,58 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_TRUE(mesh::is_written_pattern("# a comment\nMultiple of 2.\nRow 1: k1, p1.\n"));
   EXPECT_TRUE(mesh::is_written_pattern("format written\n"));
 }
+
+TEST(ChartPattern, ChartsReadAsTheWrittenRowsAKnitterReadsOffThem) {
+  // Right-side rows right to left, wrong-side rows left to right with each symbol worked as its wrong-side stitch.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"stockinette", "format chart\n. . . .\n. . . .\n"},
+      {"garter", "format chart\n- - - -\n. . . .\n"},
+      {"rib-2x2", "format chart round\n. . - -\n"},
+      {"rib-2x2", "format chart\n..--\n..--\n"},
+      {"seed", "format chart\n- .  2\n. -  1\n"},
+      {"honeycomb", "format chart round\n. . . .\n. . v .\n. . . .\nv . . .\n"},
+      {"cable-4", "format chart\nkey C C4B\n- - . . . . - -\n- - . . . . - -\n- - . . . . - -\n- - C C C C - -\n"},
+      {"twisted-rib", "format chart round\nt -\n"},
+  };
+  for (const auto& [name, text] : cases) {
+    auto expected = bundled(name);
+    if (name == "twisted-rib") expected = mesh::parse_pattern("format knit\nx p\n", "x.knit");
+    const auto chart = mesh::parse_pattern(text, name + ".txt");
+    EXPECT_TRUE(same_fabric(chart, expected)) << name << ": " << text << "read as " << rows_text(chart);
+  }
+  // A chart and the written rows it draws: the same stitches, decreases and yarn-overs included.
+  const auto chart = mesh::parse_pattern("format chart\n. . . .\n. / o .\n", "e.txt");
+  const auto written = mesh::parse_pattern("Row 1 (RS): *K1, yo, k2tog, k1; rep from * to end.\nRow 2: Purl.\n", "e.txt");
+  EXPECT_EQ(chart.rows, written.rows);
+  // A cable's key drawn over its cells; "no stitch" cells take none; the name comment carries over.
+  const auto cable = mesh::parse_pattern("# name: Rope\nformat chart round\nkey C C4F\nkey _ no stitch\n. . . . . _\n. C C C C _\n", "c.txt");
+  EXPECT_EQ(cable.name, "Rope");
+  ASSERT_EQ(cable.cables.size(), 1u);
+  EXPECT_EQ(cable.width(), 5);
+  // Every bundled chart reads, and the rope cable's chart is its written instructions' fabric.
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(SKEIN_PATTERNS_DIR) + "/charts")) {
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW(mesh::read_pattern(entry.path()));
+  }
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/rope-cable.txt"),
+                          mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/rope-cable.txt")));
+}
+
+TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
+  EXPECT_EQ(error("format chart\n. . Q .\n"),
+            "p.txt: line 2, column 5: 'Q' is not in the chart's key (- . / O V \\ ^ o t v x |; add 'key Q STITCH' above the chart)");
+  EXPECT_EQ(error("format chart\nkey C C4F\n. C C C .\n"), "p.txt: line 3, column 3: 'C' is C4F, drawn over 4 cells, but here over 3");
+  EXPECT_EQ(error("format chart\n. .  2\n. .  2\n"), "p.txt: line 3: is numbered 2 but is row 1 (the bottom row is row 1)");
+  EXPECT_EQ(error("format chart\nt .\n. .\n"),
+            "p.txt: line 2, column 1: 't' (k1 tbl) on a wrong-side row: the key gives it no wrong-side stitch (key t RS / WS)");
+  EXPECT_EQ(error("format chart\n. .\nkey C C4F\n"), "p.txt: line 3: a key line after the chart's rows: give the key first");
+  EXPECT_EQ(error("format chart\n. 3 .\n"), "p.txt: line 2, column 3: a number inside a chart row: row numbers go at its start or its end");
+  EXPECT_EQ(error("format chart\n"), "p.txt: holds no chart rows");
+  EXPECT_EQ(error("format chart\nkey 7 k\n. .\n"), "p.txt: line 2: a chart symbol is one printable ASCII character other than a digit (digits number the rows)");
+  // What the written reader refuses in the row a chart makes, placed on the chart: the lone yarn-over's cell.
+  const auto lone = error("format chart\n. . . .\n. o . .\n");
+  EXPECT_EQ(lone.rfind("p.txt: line 3, column 3: a yarn-over has a stitch model only beside its decrease", 0), 0u) << lone;
+  const auto width = error("format chart round\n. . . . .\n. / . .\n");
+  EXPECT_NE(width.find("(line 3)"), std::string::npos) << width;
+}

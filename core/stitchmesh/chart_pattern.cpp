@@ -1,0 +1,237 @@
+#include "stitchmesh/chart_pattern.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+#include "common/error.hpp"
+#include "stitchmesh/written_pattern.hpp"
+
+namespace skein::mesh {
+namespace {
+
+constexpr size_t kLongestLine = 4096;
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+/// What a symbol means: the stitch worked on a right-side row and on a wrong-side row (written abbreviations;
+/// empty: none), and how many cells it is drawn over (a cable's stitches, else 1).
+struct Symbol {
+  std::string right, wrong;
+  int cells = 1;
+  bool no_stitch = false;
+};
+
+/// The cells a cable abbreviation is drawn over: C4F, T3B (N), 2/2 LC, 1/2 RPC (a + b); 1 for the rest.
+int cells_of(const std::string& abbreviation) {
+  static const std::regex single(R"(^[ct](\d)[fb]$)", std::regex::icase), split(R"(^(\d)\s*/\s*(\d)\s*(?:lc|rc|lt|rt|lpc|rpc)$)", std::regex::icase);
+  std::smatch m;
+  if (std::regex_match(abbreviation, m, single)) return m[1].str()[0] - '0';
+  if (std::regex_match(abbreviation, m, split)) return (m[1].str()[0] - '0') + (m[2].str()[0] - '0');
+  return 1;
+}
+
+/// The Craft Yarn Council's chart symbols, in the characters a text file can hold.
+std::map<char, Symbol> default_key() {
+  return {{'.', {"k", "p"}},           {'|', {"k", "p"}},           {'-', {"p", "k"}},        {'o', {"yo", "yo"}},
+          {'O', {"yo", "yo"}},         {'/', {"k2tog", "p2tog"}},   {'\\', {"ssk", "ssp"}},    {'v', {"sl1 wyib", "sl1 wyif"}},
+          {'V', {"sl1 wyib", "sl1 wyif"}}, {'t', {"k1 tbl", ""}},   {'^', {"sk2p", ""}},      {'x', {"", "", 1, true}}};
+}
+
+std::string key_symbols(const std::map<char, Symbol>& key) {
+  std::string out;
+  for (const auto& [c, s] : key) out += std::string(out.empty() ? "" : " ") + c;
+  return out;
+}
+
+/// One chart row as drawn: its cells (symbol, 1-based column) left to right, its line, its number if written.
+struct ChartRow {
+  std::vector<std::pair<char, int>> cells;
+  int line = 0, number = 0;
+};
+
+/// A row of the written instructions a chart row makes, with the chart column of each stitch in it.
+struct MadeRow {
+  std::string text;
+  std::vector<std::pair<int, int>> columns;  ///< (column in `text` where a stitch starts, its cell's chart column)
+  int chart_line = 0;
+};
+
+}  // namespace
+
+bool is_chart_pattern(const std::string& text) {
+  std::istringstream in(text);
+  static const std::regex format(R"(^\s*format\s+chart(\s+(flat|round))?\s*$)", std::regex::icase);
+  for (std::string line; std::getline(in, line);) {
+    if (line.size() > kLongestLine) return false;
+    const std::string content = trim(line.substr(0, line.find('#')));
+    if (content.empty()) continue;
+    return std::regex_match(content, format);
+  }
+  return false;
+}
+
+Pattern parse_chart_pattern(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  auto key = default_key();
+  bool round = false, started = false;
+  std::vector<ChartRow> drawn;  // top line first
+  std::vector<std::string> comments;  // "# name:" and "# source:" lines, for the written reader
+  int line_no = 0;
+  const auto at = [](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
+  for (std::string raw; std::getline(in, raw);) {
+    ++line_no;
+    if (raw.size() > kLongestLine) throw Error(source, at(line_no, 0), "is longer than " + std::to_string(kLongestLine) + " characters");
+    const auto hash = raw.find('#');
+    if (hash != std::string::npos) {
+      const std::string c = trim(raw.substr(hash + 1));
+      if (c.rfind("name:", 0) == 0 || c.rfind("source:", 0) == 0) comments.push_back("# " + c);
+    }
+    const std::string line = raw.substr(0, hash);
+    const std::string content = trim(line);
+    if (content.empty()) continue;
+    std::string lowered = content;
+    std::transform(lowered.begin(), lowered.end(), lowered.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!started) {
+      if (lowered.rfind("format", 0) != 0) throw Error(source, at(line_no, 0), "expected 'format chart' (or 'format chart round') first");
+      round = lowered.find("round") != std::string::npos;
+      started = true;
+      continue;
+    }
+    if (lowered.rfind("key ", 0) == 0 || lowered.rfind("key\t", 0) == 0) {
+      // "key C C4F", "key t k1 tbl / p1 tbl", "key x no stitch": a symbol and its stitch, right side / wrong side.
+      if (!drawn.empty()) throw Error(source, at(line_no, 0), "a key line after the chart's rows: give the key first");
+      const std::string rest = trim(content.substr(4));
+      if (rest.size() < 3 || std::isspace(static_cast<unsigned char>(rest[0])) || !std::isspace(static_cast<unsigned char>(rest[1])))
+        throw Error(source, at(line_no, 0), "expected 'key SYMBOL STITCH' with a one-character symbol (e.g. 'key C C4F')");
+      const char symbol = rest[0];
+      if (std::isdigit(static_cast<unsigned char>(symbol)) || static_cast<unsigned char>(symbol) > 126)
+        throw Error(source, at(line_no, 0), "a chart symbol is one printable ASCII character other than a digit (digits number the rows)");
+      const std::string meaning = trim(rest.substr(1));
+      Symbol s;
+      if (meaning == "no stitch") {
+        s.no_stitch = true;
+      } else {
+        const auto slash = meaning.find(" / ");
+        s.right = trim(meaning.substr(0, slash));
+        s.wrong = slash == std::string::npos ? "" : trim(meaning.substr(slash + 3));
+        s.cells = cells_of(s.right);
+      }
+      key[symbol] = s;
+      continue;
+    }
+    // A row of the grid: one character a cell, spaces between them or not, its row number at either end.
+    ChartRow row;
+    row.line = line_no;
+    for (size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (c == ' ' || c == '\t' || c == '\r') continue;
+      if (std::isdigit(static_cast<unsigned char>(c))) {
+        size_t j = i;
+        while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
+        const bool first = row.cells.empty(), last = trim(line.substr(j)).empty();
+        if ((!first && !last) || row.number > 0 || j - i > 6)
+          throw Error(source, at(line_no, static_cast<int>(i) + 1), "a number inside a chart row: row numbers go at its start or its end");
+        row.number = std::stoi(line.substr(i, j - i));
+        i = j - 1;
+        continue;
+      }
+      if (!key.count(c))
+        throw Error(source, at(line_no, static_cast<int>(i) + 1),
+                    std::string("'") + c + "' is not in the chart's key (" + key_symbols(key) + "; add 'key " + c + " STITCH' above the chart)");
+      row.cells.emplace_back(c, static_cast<int>(i) + 1);
+    }
+    if (row.cells.empty()) throw Error(source, at(line_no, 0), "a chart row with no cells");
+    drawn.push_back(row);
+  }
+  if (!started) throw Error(source, "", "holds no chart: expected 'format chart' and rows of symbols");
+  if (drawn.empty()) throw Error(source, "", "holds no chart rows");
+
+  // Each row as a knitter reads it: right-side rows right to left, wrong-side rows left to right.
+  std::vector<MadeRow> made;
+  const int rows = static_cast<int>(drawn.size());
+  for (int r = 1; r <= rows; ++r) {
+    const ChartRow& row = drawn[rows - r];
+    if (row.number > 0 && row.number != r)
+      throw Error(source, at(row.line, 0), "is numbered " + std::to_string(row.number) + " but is row " + std::to_string(r) + " (the bottom row is row 1)");
+    const bool right_side = round || r % 2 == 1;
+    MadeRow out;
+    out.chart_line = row.line;
+    out.text = round ? "Rnd " + std::to_string(r) + ": " : "Row " + std::to_string(r) + (right_side ? " (RS): " : " (WS): ");
+    std::vector<std::pair<char, int>> cells = row.cells;
+    if (right_side) std::reverse(cells.begin(), cells.end());
+    bool any = false;
+    for (size_t i = 0; i < cells.size();) {
+      const auto [c, column] = cells[i];
+      const Symbol& s = key.at(c);
+      size_t run = 1;
+      if (s.cells > 1) {
+        while (i + run < cells.size() && cells[i + run].first == c) ++run;
+        if (run % s.cells != 0)
+          throw Error(source, at(row.line, std::min(column, cells[i + run - 1].second)),
+                      std::string("'") + c + "' is " + s.right + ", drawn over " + std::to_string(s.cells) + " cells, but here over " + std::to_string(run));
+      }
+      for (size_t k = 0; k < run; k += static_cast<size_t>(s.cells)) {
+        if (s.no_stitch) continue;
+        const std::string stitch = right_side ? s.right : s.wrong;
+        if (stitch.empty())
+          throw Error(source, at(row.line, cells[i + k].second),
+                      std::string("'") + c + "' (" + s.right + ") on a wrong-side row: the key gives it no wrong-side stitch (key " + c + " RS / WS)");
+        if (any) out.text += ", ";
+        // The chart column of a cable is its leftmost cell's.
+        const int chart_column = right_side ? cells[i + k + static_cast<size_t>(s.cells) - 1].second : cells[i + k].second;
+        out.columns.emplace_back(static_cast<int>(out.text.size()) + 1, chart_column);
+        out.text += stitch;
+        any = true;
+      }
+      i += run;
+    }
+    if (!any) throw Error(source, at(row.line, 0), "a chart row of 'no stitch' cells only");
+    out.text += ".";
+    made.push_back(out);
+  }
+
+  // The written instructions, read as written; their errors placed back on the chart.
+  std::string written;
+  for (const auto& c : comments) written += c + "\n";
+  const int first_row_line = static_cast<int>(comments.size()) + 1;
+  for (const auto& m : made) written += m.text + "\n";
+  try {
+    return parse_written_pattern(written, source);
+  } catch (const Error& e) {
+    static const std::regex place(R"(^line (\d+)(?:, column (\d+))?$)"), mention(R"(\(line (\d+)\))");
+    const auto chart_place = [&](int line, int column) {
+      const int r = line - first_row_line;
+      if (r < 0 || r >= rows) return std::pair{0, 0};
+      int chart_column = 0;
+      for (const auto& [from, to] : made[r].columns)
+        if (from <= column) chart_column = to;
+      return std::pair{made[r].chart_line, column > 0 ? chart_column : 0};
+    };
+    std::smatch m;
+    std::string where = e.place();
+    if (std::regex_match(where, m, place)) {
+      const auto [line, column] = chart_place(std::stoi(m[1].str()), m[2].matched ? std::stoi(m[2].str()) : 0);
+      if (line > 0) where = at(line, column);
+    }
+    std::string rule = e.rule(), mapped;
+    auto from = rule.cbegin();
+    for (std::sregex_iterator it(rule.begin(), rule.end(), mention), end; it != end; ++it) {
+      const int line = chart_place(std::stoi((*it)[1].str()), 0).first;
+      mapped.append(from, (*it)[0].first) += line > 0 ? "(line " + std::to_string(line) + ")" : (*it)[0].str();
+      from = (*it)[0].second;
+    }
+    mapped.append(from, rule.cend());
+    throw Error(source, where, mapped);
+  }
+}
+
+}  // namespace skein::mesh

@@ -1,0 +1,24 @@
+#pragma once
+// Knitting charts as text (issue 26, part 2): a grid of symbols drawn as the fabric looks from the right side,
+// the bottom line row 1, with the Craft Yarn Council's symbols as the default key and keys of the file's own.
+// Read by turning each chart row into the written instructions a knitter reads off it (right-side rows right
+// to left, wrong-side rows left to right with each symbol worked as its wrong-side stitch) and reading those
+// with the written-instruction reader (written_pattern.hpp), so both notations mean the same stitches.
+// patterns/FORMAT.md, "Charts", lists the symbols.
+#include <string>
+
+#include "stitchmesh/pattern.hpp"
+
+namespace skein::mesh {
+
+/// Whether `text` is a chart: its first line that is not blank or a `#` comment is `format chart` (worked
+/// flat) or `format chart round` (in the round).
+bool is_chart_pattern(const std::string& text);
+
+/// Reads a chart into one repeat, rows bottom first, as seen from the front. Throws skein::Error naming
+/// `source`, the chart's line and column and the rule broken: a symbol the key does not hold (naming the
+/// key's symbols), a cable drawn over the wrong number of cells, a row number that is not the row's, and what
+/// the written-instruction reader refuses in the row the chart makes (placed at the chart's cell).
+Pattern parse_chart_pattern(const std::string& text, const std::string& source);
+
+}  // namespace skein::mesh
