@@ -184,6 +184,8 @@ int main(int argc, char** argv) {
   ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
   ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points, crossings");
   ry->add_option("--png", ry_png, "picture of the relaxed yarn");
+  std::string ry_ids;
+  ry->add_option("--ids", ry_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks; a project's yarn");
   std::string ry_views = "garment";
   ry->add_option("--views", ry_views, "garment (three-quarter front, back-side) or flat (front, back) for --png")
       ->check(CLI::IsMember({"garment", "flat"}))->capture_default_str();
@@ -288,6 +290,9 @@ int main(int argc, char** argv) {
   pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
   pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
   pat->add_option("--png", pat_png, "picture of the yarn, front and back");
+  std::string pat_ids;
+  pat->add_option("--ids", pat_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md): knits and tiles, "
+                                    "emitted or relaxed --tiled");
   pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
   pat->add_option("--stitch-size", pat_size.width, "knits: stitch width [mm]; wovens: yarn spacing is 4 yarn radii")->capture_default_str();
   pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
@@ -661,6 +666,14 @@ int main(int argc, char** argv) {
       mesh::YarnCurves yarn;
       relax::ShapeTargets targets;
       if (!is_bcc(ry_in) && !is_project(ry_in)) throw Error(ry_in, "", "relax-yarn reads a .skein project or .bcc yarn");
+      if (!ry_ids.empty() && is_bcc(ry_in)) throw Error("", "--ids", "names each control point's stitch face: give a .skein project (" + ry_in + " is bare yarn)");
+      if (!ry_ids.empty()) check_writable(ry_ids);
+      std::optional<mesh::StitchMesh> ids_mesh;  // the stitch mesh the yarn was emitted from, for --ids
+      const auto write_ids = [&](const mesh::YarnCurves& written) {
+        if (ry_ids.empty()) return;
+        relax::write_point_ids(written, *ids_mesh, ry_ids);
+        spdlog::info("wrote {}", ry_ids);
+      };
       if (is_bcc(ry_in)) {
         yarn = relax::read_bcc(ry_in);
         if (!ry_no_shape) spdlog::info("{} is bare yarn: no stitch faces, so no shape preservation", ry_in);
@@ -669,6 +682,7 @@ int main(int argc, char** argv) {
         if (!project.stitch) throw Error(ry_in, "", "holds no stitch mesh; run 'skein stitch' first");
         yarn = yarn_of(ry_in, ry_radius, ry_stitches);
         if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
+        ids_mesh = *project.stitch;
       }
       if (!ry_warm.empty() || !ry_warm_project.empty()) {
         if (ry_warm.empty() || ry_warm_project.empty() || !is_project(ry_in))
@@ -690,6 +704,7 @@ int main(int argc, char** argv) {
         if (local.stopped_by != "unsafe splice") {
           const auto out = relax::with_points(yarn, points);
           write_yarn(out, ry_out);
+          write_ids(out);
           spdlog::info("{} after {} steps in {} rounds ({:.2f} s): {} stitches changed, {} rings, {} pull-through events; wrote {}", local.stopped_by,
                        local.steps, local.rounds, local.wall_seconds, local.changed_stitches, local.rings,
                        local.pull_through_events < 0 ? std::string("unaudited") : std::to_string(local.pull_through_events), ry_out);
@@ -734,6 +749,7 @@ int main(int argc, char** argv) {
         const long crossings = static_cast<long>(relax::TopologyAuditor(system).crossings(system.points, points).size());
         const auto out = relax::with_points(yarn, points);
         write_yarn(out, ry_out, true);
+        write_ids(out);
         spdlog::info("stand-in preview (not a relaxation) in {:.2f} s: {} repeats, {} of {} control points placed from their patches, {} following "
                      "their yarn; {} crossings on the way from the emission; wrote {}",
                      stand_in.seconds, stand_in.repeats.size(), stand_in.placed, out.points.size(), stand_in.following, crossings, ry_out);
@@ -762,8 +778,10 @@ int main(int argc, char** argv) {
         spdlog::info("resuming {} at step {}", ry_resume, state.step);
       }
       ry_options.interrupt = install_interrupt_handlers();
-      return exit_status(relax_and_write(yarn, system, targets, ry_options, state,
-                                         {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))}));
+      const json report = relax_and_write(yarn, system, targets, ry_options, state,
+                                          {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))});
+      if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
+      return exit_status(report);
     }
     if (*pat) {
       int across = 0, up = 0;
@@ -803,6 +821,18 @@ int main(int argc, char** argv) {
       if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
       if (!pat_preview.empty()) check_writable(pat_preview);
       std::optional<relax::PeriodicPatch> patch_kept;  // for the preview
+      std::optional<mesh::StitchMesh> ids_mesh;        // for --ids: the tiling's stitch mesh
+      if (!pat_ids.empty()) {
+        if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "--ids", "names each control point's stitch face, and a woven pattern has none");
+        if (pat_relax && !pat_tiled)
+          throw Error("", "--ids", "names each control point's stitch face in a tiling: the periodic patch is one repeat and its copies (add --tiled)");
+        check_writable(pat_ids);
+      }
+      const auto write_ids = [&] {
+        if (pat_ids.empty()) return;
+        relax::write_point_ids(yarn, *ids_mesh, pat_ids);
+        spdlog::info("wrote {}", pat_ids);
+      };
       Eigen::Vector2d period_scale(1, 1);
       if (pat_relax && !pat_tiled) {
         auto patch = pattern.format == mesh::PatternFormat::Woven ? relax::periodic_woven_patch(pattern, 4 * radius, sim_radius)
@@ -823,6 +853,7 @@ int main(int argc, char** argv) {
         emit.yarn_radius = sim_radius;
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
+        ids_mesh = stitch_mesh;
       }
       if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
       spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
@@ -868,9 +899,11 @@ int main(int argc, char** argv) {
           spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",
                        across, up, placed.matched, out.points.size(), pat_preview.empty() ? std::string() : "; wrote " + pat_preview);
         }
+        if (report.at("stopped_by") != "interrupted") write_ids();
         return exit_status(report);
       }
       write_yarn(yarn, pat_out);
+      write_ids();
       if (!pat_report.empty()) {
         json j = {{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
                   {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},

@@ -205,6 +205,47 @@ TEST(Cli, YarnObjInMetresForBlenderAndTheStitchIdsBesideIt) {
   EXPECT_FALSE(std::filesystem::exists(dir / "y.bcc"));
 }
 
+TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {
+  ScratchDir dir;
+  const auto project = (dir / "s.skein").string();
+  ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project).status, 0);
+  // relax-yarn: the same side file as the emission's (the relaxed yarn keeps its points' order).
+  ASSERT_EQ(run_skein("yarn " + project + " -o " + (dir / "e.bcc").string() + " --ids " + (dir / "e.csv").string()).status, 0);
+  auto r = run_skein("relax-yarn " + project + " -o " + (dir / "r.bcc").string() + " --ids " + (dir / "r.csv").string() + " --max-steps 3 --no-audit");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(slurp(dir / "r.csv"), slurp(dir / "e.csv"));
+  EXPECT_GT(slurp(dir / "r.csv").size(), 100u);
+  expect_refused("relax-yarn " + (dir / "e.bcc").string() + " --ids " + (dir / "b.csv").string(), dir / "b.bcc",
+                 "--ids: names each control point's stitch face: give a .skein project");
+  EXPECT_FALSE(std::filesystem::exists(dir / "b.csv"));
+  // pattern: a row per control point of the tiling, its faces the tiling's, knit and purl as the rib has them.
+  r = run_skein("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --tile 2x3 -o " + (dir / "p.bcc").string() + " --ids " +
+                (dir / "p.csv").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream ids(slurp(dir / "p.csv"));
+  std::string line;
+  std::getline(ids, line);
+  EXPECT_EQ(line, "point,curve,face,row,type");
+  long points = 0;
+  std::set<std::string> types;
+  std::set<int> faces;
+  for (; std::getline(ids, line); ++points) {
+    int point = 0, curve = 0, face = 0, row = 0;
+    char type[16] = "";
+    ASSERT_GE(std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &point, &curve, &face, &row, type), 4) << line;
+    EXPECT_EQ(point, points);
+    if (face >= 0) faces.insert(face), types.insert(type);
+  }
+  EXPECT_EQ(points, static_cast<long>(skein::relax::read_bcc(dir / "p.bcc").points.size()));
+  EXPECT_EQ(faces.size(), 12u);  // 2 x 3 repeats of 2 x 1 stitches
+  EXPECT_EQ(types, (std::set<std::string>{"k", "p"}));
+  expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --relax --ids " + (dir / "q.csv").string(), dir / "q.bcc",
+                 "--ids: names each control point's stitch face in a tiling: the periodic patch is one repeat and its copies (add --tiled)");
+  expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave --ids " + (dir / "q.csv").string(), dir / "q.bcc",
+                 "--ids: names each control point's stitch face, and a woven pattern has none");
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.csv"));
+}
+
 TEST(Cli, AMeshThatWouldMakeTooManyStitchesIsRefusedBeforeTessellating) {
   ScratchDir dir;
   // The swatch (120 x 100 mm) read as if its millimetres were stitches of 10 µm: about 1.4e8 stitches.
