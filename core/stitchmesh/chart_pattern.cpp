@@ -30,9 +30,10 @@ struct Symbol {
   bool no_stitch = false;
 };
 
-/// The cells a cable abbreviation is drawn over: C4F, T3B (N), 2/2 LC, 1/2 RPC (a + b); 1 for the rest.
+/// The cells a cable abbreviation is drawn over: C4F, T3B (N), 2/2 LC, 1/2 RPC (a + b); 1 for the rest (a "C0B"
+/// too: the written reader then says which cables have models). Never 0, which would draw it over nothing.
 int cells_of(const std::string& abbreviation) {
-  static const std::regex single(R"(^[ct](\d)[fb]$)", std::regex::icase), split(R"(^(\d)\s*/\s*(\d)\s*(?:lc|rc|lt|rt|lpc|rpc)$)", std::regex::icase);
+  static const std::regex single(R"(^[ct]([1-9])[fb]$)", std::regex::icase), split(R"(^([1-9])\s*/\s*([1-9])\s*(?:lc|rc|lt|rt|lpc|rpc)$)", std::regex::icase);
   std::smatch m;
   if (std::regex_match(abbreviation, m, single)) return m[1].str()[0] - '0';
   if (std::regex_match(abbreviation, m, split)) return (m[1].str()[0] - '0') + (m[2].str()[0] - '0');

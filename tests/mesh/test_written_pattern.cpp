@@ -237,6 +237,9 @@ TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
   // What the written reader refuses in the row a chart makes, placed on the chart: the lone yarn-over's cell.
   const auto lone = error("format chart\n. . . .\n. o . .\n");
   EXPECT_EQ(lone.rfind("p.txt: line 3, column 3: a yarn-over has a stitch model only beside its decrease", 0), 0u) << lone;
+  // A cable key of no stitches (found by fuzzing: it drew the cable over no cells and never ended) is no cable.
+  const auto none = error("format chart\nkey C C0B\n- C C -\n");
+  EXPECT_EQ(none, "p.txt: line 3, column 5: 'c0b': cables of 2, 4 or 6 stitches (half over half) have models");
   const auto width = error("format chart round\n. . . . .\n. / . .\n");
   EXPECT_NE(width.find("(line 3)"), std::string::npos) << width;
 }
