@@ -48,6 +48,27 @@ std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 const std::string kModels = SKEIN_MODELS_DIR;
+/// One line of a stitch ids side file (docs/FORMATS.md).
+struct PointId {
+  int point = 0, curve = 0, face = 0, row = 0;
+  std::string type;
+};
+/// The side file's lines after its header, which must be the documented one.
+std::vector<PointId> read_ids(const std::filesystem::path& path) {
+  std::istringstream in(slurp(path));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "point,curve,face,row,type") << path;
+  std::vector<PointId> out;
+  while (std::getline(in, line)) {
+    PointId id;
+    char type[16] = "";
+    EXPECT_GE(std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &id.point, &id.curve, &id.face, &id.row, type), 4) << line;
+    id.type = type;
+    out.push_back(id);
+  }
+  return out;
+}
 }  // namespace
 
 TEST(Cli, StitchThenStatsJson) {
@@ -175,23 +196,16 @@ TEST(Cli, YarnObjInMetresForBlenderAndTheStitchIdsBesideIt) {
   // The stitch ids side file: a row per control point, numbered as the OBJ's vertices, every face a real one.
   r = run_skein("yarn " + project + " -o " + (dir / "y.obj").string() + " --ids " + (dir / "ids.csv").string());
   ASSERT_EQ(r.status, 0) << r.output;
-  std::istringstream ids(slurp(dir / "ids.csv"));
-  std::string line;
-  std::getline(ids, line);
-  EXPECT_EQ(line, "point,curve,face,row,type");
   const auto stats = run_skein("stats " + project + " --json").output;
   const auto at = stats.find("\"faces\": ");
   ASSERT_NE(at, std::string::npos) << stats;
   const int faces = std::atoi(stats.c_str() + at + 9);
   long points = 0, with_face = 0;
   std::set<int> rows;
-  for (; std::getline(ids, line); ++points) {
-    int point = 0, curve = 0, face = 0, row = 0;
-    char type[16] = "";
-    ASSERT_GE(std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &point, &curve, &face, &row, type), 4) << line;
-    EXPECT_EQ(point, points);
-    EXPECT_LT(face, faces) << line;
-    if (face >= 0) ++with_face, rows.insert(row);
+  for (const auto& id : read_ids(dir / "ids.csv")) {
+    EXPECT_EQ(id.point, points++);
+    EXPECT_LT(id.face, faces) << id.point;
+    if (id.face >= 0) ++with_face, rows.insert(id.row);
   }
   const std::string obj = slurp(dir / "y.obj");
   long vertices = 0;
@@ -222,19 +236,12 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {
   r = run_skein("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --tile 2x3 -o " + (dir / "p.bcc").string() + " --ids " +
                 (dir / "p.csv").string());
   ASSERT_EQ(r.status, 0) << r.output;
-  std::istringstream ids(slurp(dir / "p.csv"));
-  std::string line;
-  std::getline(ids, line);
-  EXPECT_EQ(line, "point,curve,face,row,type");
   long points = 0;
   std::set<std::string> types;
   std::set<int> faces;
-  for (; std::getline(ids, line); ++points) {
-    int point = 0, curve = 0, face = 0, row = 0;
-    char type[16] = "";
-    ASSERT_GE(std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &point, &curve, &face, &row, type), 4) << line;
-    EXPECT_EQ(point, points);
-    if (face >= 0) faces.insert(face), types.insert(type);
+  for (const auto& id : read_ids(dir / "p.csv")) {
+    EXPECT_EQ(id.point, points++);
+    if (id.face >= 0) faces.insert(id.face), types.insert(id.type);
   }
   EXPECT_EQ(points, static_cast<long>(skein::relax::read_bcc(dir / "p.bcc").points.size()));
   EXPECT_EQ(faces.size(), 12u);  // 2 x 3 repeats of 2 x 1 stitches
