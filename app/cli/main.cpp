@@ -28,6 +28,7 @@
 #include "relax/yarn_io.hpp"
 #include "relax/yarn_local.hpp"
 #include "relax/yarn_periodic.hpp"
+#include "render/chart_view.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "skein/config.hpp"
@@ -290,7 +291,9 @@ int main(int argc, char** argv) {
   pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
   pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
   pat->add_option("--png", pat_png, "picture of the yarn, front and back");
-  std::string pat_ids;
+  std::string pat_ids, pat_chart_png;
+  pat->add_option("--chart-png", pat_chart_png, "the repeat drawn as a knitting chart in the Craft Yarn Council's symbols (patterns/FORMAT.md), as skein "
+                                                "read it; knits and tiles");
   pat->add_option("--ids", pat_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md): knits and tiles, "
                                     "emitted or relaxed --tiled");
   pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
@@ -789,6 +792,16 @@ int main(int argc, char** argv) {
       if (std::sscanf(pat_tile.c_str(), "%dx%d%c", &across, &up, &tail) != 2 || across < 1 || up < 1)
         throw Error("", "--tile", "expected NxM with N and M at least 1 (e.g. 4x4), found '" + pat_tile + "'");
       const auto pattern = mesh::read_pattern(pat_in);
+      std::optional<render::Image> chart;  // drawn now (a woven pattern is refused before any work), written with the outputs
+      if (!pat_chart_png.empty()) {
+        check_writable(pat_chart_png);
+        chart = render::draw_chart(pattern);
+      }
+      const auto write_chart = [&] {
+        if (!chart) return;
+        render::write_png(*chart, pat_chart_png);
+        spdlog::info("wrote {}", pat_chart_png);
+      };
       if (!pat_onto.empty()) {
         check_writable(pat_out);
         auto project = mesh::read_project(pat_onto);
@@ -800,6 +813,7 @@ int main(int argc, char** argv) {
         mesh::TileReport tiled;
         *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face, &tiled);
         mesh::write_project(project, pat_out);
+        write_chart();
         if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, render::ColorBy::StitchType);
         if (tiled.repeats > 0)
           spdlog::info("tiled {} from face {}: {} whole {} x {} repeats re-meshed ({} of the {} chosen stitches); wrote {}", pattern.name, pat_face,
@@ -899,11 +913,12 @@ int main(int argc, char** argv) {
           spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",
                        across, up, placed.matched, out.points.size(), pat_preview.empty() ? std::string() : "; wrote " + pat_preview);
         }
-        if (report.at("stopped_by") != "interrupted") write_ids();
+        if (report.at("stopped_by") != "interrupted") write_ids(), write_chart();
         return exit_status(report);
       }
       write_yarn(yarn, pat_out);
       write_ids();
+      write_chart();
       if (!pat_report.empty()) {
         json j = {{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
                   {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},

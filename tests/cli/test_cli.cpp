@@ -219,7 +219,7 @@ TEST(Cli, YarnObjInMetresForBlenderAndTheStitchIdsBesideIt) {
   EXPECT_FALSE(std::filesystem::exists(dir / "y.bcc"));
 }
 
-TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {
+TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {  // and pattern's chart picture
   ScratchDir dir;
   const auto project = (dir / "s.skein").string();
   ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project).status, 0);
@@ -234,8 +234,9 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {
   EXPECT_FALSE(std::filesystem::exists(dir / "b.csv"));
   // pattern: a row per control point of the tiling, its faces the tiling's, knit and purl as the rib has them.
   r = run_skein("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --tile 2x3 -o " + (dir / "p.bcc").string() + " --ids " +
-                (dir / "p.csv").string());
+                (dir / "p.csv").string() + " --chart-png " + (dir / "chart.png").string());
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "chart.png"));
   long points = 0;
   std::set<std::string> types;
   std::set<int> faces;
@@ -251,6 +252,9 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {
   expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave --ids " + (dir / "q.csv").string(), dir / "q.bcc",
                  "--ids: names each control point's stitch face, and a woven pattern has none");
   EXPECT_FALSE(std::filesystem::exists(dir / "q.csv"));
+  expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave --chart-png " + (dir / "q.png").string(), dir / "q.bcc",
+                 "chart: a woven pattern has no knitting chart: draw its yarn with --png");
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
 }
 
 TEST(Cli, AMeshThatWouldMakeTooManyStitchesIsRefusedBeforeTessellating) {

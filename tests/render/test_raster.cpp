@@ -4,8 +4,10 @@
 
 #include "common/error.hpp"
 #include "garments.hpp"
+#include "render/chart_view.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/edits.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitch_fixtures.hpp"
@@ -56,4 +58,31 @@ TEST(Render, PngRoundTripAndErrors) {
 
 TEST(Render, RowColoursDifferBetweenNeighbours) {
   for (int r = 0; r < 200; ++r) EXPECT_GT((render::row_color(r) - render::row_color(r + 1)).norm(), 0.1f) << r;
+}
+
+namespace {
+/// Pixels darker than the grid lines (the symbols' ink) and bluish ones (cable strands).
+std::pair<long, long> ink_and_cable(const render::Image& img) {
+  long ink = 0, cable = 0;
+  for (size_t i = 0; i < img.rgb.size(); i += 3) {
+    const int r = img.rgb[i], g = img.rgb[i + 1], b = img.rgb[i + 2];
+    ink += r < 150 && g < 150 && b < 150;
+    cable += b > r + 60;
+  }
+  return {ink, cable};
+}
+}  // namespace
+
+TEST(Chart, SymbolsForWhatThePatternHoldsAndNoneForPlainKnit) {
+  const auto chart = [](const std::string& text) { return render::draw_chart(mesh::parse_pattern(text, "c.knit"), 20); };
+  const auto plain = ink_and_cable(chart("format knit\nk k\nk k\n"));
+  const auto seed = ink_and_cable(chart("format knit\np k\nk p\n"));
+  const auto lace = ink_and_cable(chart("format knit\nk k\n2u\n"));
+  const auto cable = ink_and_cable(chart("format written\nRnd 1: p1, C4F, p1.\nRnd 2: p1, k4, p1.\n"));
+  EXPECT_EQ(plain.first, 0);   // knit is a blank cell
+  EXPECT_GT(seed.first, 20);   // two purl dots
+  EXPECT_GT(lace.first, 20);   // k2tog and a yarn-over
+  EXPECT_GT(cable.second, 50); // the crossing strands
+  EXPECT_EQ(plain.second, 0);
+  EXPECT_THROW(render::draw_chart(mesh::parse_pattern("format woven\n1 0\n0 1\n", "w.weave")), Error);
 }
