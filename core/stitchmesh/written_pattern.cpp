@@ -22,11 +22,15 @@ constexpr size_t kLongestLine = 4096;
 /// every bound below refuses (std::stoi would throw out of range on a long one).
 int count_of(const std::string& digits) { return digits.size() > 6 ? 1000000 : std::stoi(digits); }
 
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
 /// The counts books write in words, and digits: "once", "twice", "thrice", "one" to "ten"; 0 for none of them.
 int count_in_words(const std::string& text) {
   static const std::array<const char*, 10> words = {"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten"};
-  std::string word;
-  for (char c : text) word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string word = lower(text);
   if (!word.empty() && std::all_of(word.begin(), word.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) return count_of(word);
   if (word == "once") return 1;
   if (word == "twice") return 2;
@@ -34,11 +38,6 @@ int count_in_words(const std::string& text) {
   for (size_t k = 0; k < words.size(); ++k)
     if (word == words[k]) return static_cast<int>(k) + 1;
   return 0;
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
 }
 
 /// One thing a row's instructions say, in the order written.
