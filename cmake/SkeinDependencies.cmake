@@ -8,6 +8,7 @@ find_package(spdlog REQUIRED)
 find_package(OpenMP REQUIRED)
 find_package(TBB REQUIRED)
 find_package(PNG REQUIRED)
+find_package(MPI REQUIRED COMPONENTS CXX)  # Open MPI 4.1 (libopenmpi-dev): skein-mpi, target MPI::MPI_CXX
 
 # OpenSubdiv 3.5 (libosd-dev): its CMake config points at a missing libosdCPU.a, so find it by hand.
 find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)

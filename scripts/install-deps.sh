@@ -8,6 +8,7 @@ packages=(
   qt6-base-dev libqt6opengl6-dev libxkbcommon-dev xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev libomp-dev
   gnuplot-nox
+  libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

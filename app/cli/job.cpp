@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "commands.hpp"
+#include "json_keys.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -25,82 +26,6 @@
 
 namespace skein::cli {
 namespace {
-
-/// Reads the members of one JSON object of a job, naming "key.sub" and what was expected in its errors.
-class Keys {
-public:
-  Keys(const json& object, std::string prefix, const fs::path& file) : m_object(object), m_prefix(std::move(prefix)), m_file(file) {
-    if (!object.is_object()) fail(m_prefix.empty() ? "the job" : m_prefix, "expected an object {...}, found " + object.dump());
-  }
-
-  /// Every key must be one of `known`.
-  void only(const std::set<std::string>& known) const {
-    for (const auto& [key, value] : m_object.items())
-      if (!known.count(key)) {
-        std::string names;
-        for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
-        fail(name(key), "is not a key here (known: " + names + ")");
-      }
-  }
-  bool has(const std::string& key) const { return m_object.contains(key); }
-  const json& at(const std::string& key) const { return m_object.at(key); }
-
-  double number(const std::string& key, double fallback, double low, double high) const {
-    if (!has(key)) return fallback;
-    const auto& v = at(key);
-    if (!v.is_number()) fail(name(key), "expected a number, found " + v.dump());
-    const double x = v.get<double>();
-    if (!std::isfinite(x) || x < low || x > high) fail(name(key), "expected a number in [" + fmt(low) + ", " + fmt(high) + "], found " + v.dump());
-    return x;
-  }
-  long integer(const std::string& key, long fallback, long low, long high) const {
-    if (!has(key)) return fallback;
-    const auto& v = at(key);
-    if (!v.is_number_integer()) fail(name(key), "expected a whole number, found " + v.dump());
-    const long x = v.get<long>();
-    if (x < low || x > high) fail(name(key), "expected a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "], found " + v.dump());
-    return x;
-  }
-  bool flag(const std::string& key, bool fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_boolean()) fail(name(key), "expected true or false, found " + at(key).dump());
-    return at(key).get<bool>();
-  }
-  std::string text(const std::string& key, const std::string& fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_string() || at(key).get<std::string>().empty()) fail(name(key), "expected a non-empty string, found " + at(key).dump());
-    return at(key).get<std::string>();
-  }
-  std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices) const {
-    const std::string v = text(key, fallback);
-    if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
-      std::string names;
-      for (size_t i = 0; i < choices.size(); ++i)
-        names += (i == 0 ? "\"" : i + 1 == choices.size() ? " or \"" : ", \"") + choices[i] + "\"";
-      fail(name(key), "expected " + names + ", found \"" + v + "\"");
-    }
-    return v;
-  }
-  /// A file named relative to the job file's folder, which must exist.
-  fs::path file(const std::string& key) const {
-    const fs::path p = (m_file.parent_path() / text(key, "")).lexically_normal();
-    std::error_code error;  // a name the file system refuses (too long, ...) is an error in the job, not a crash
-    if (!fs::exists(p, error)) fail(name(key), "names " + p.string() + ", which " + (error ? "cannot be read: " + error.message() : "does not exist"));
-    return p;
-  }
-  std::string name(const std::string& key) const { return m_prefix.empty() ? key : m_prefix + "." + key; }
-  [[noreturn]] void fail(const std::string& key, const std::string& rule) const { throw Error(m_file.string(), "key '" + key + "'", rule); }
-
-private:
-  static std::string fmt(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
-  }
-  const json& m_object;
-  std::string m_prefix;
-  const fs::path& m_file;
-};
 
 relax::MeshRelaxOptions mesh_options(const Keys& k) {
   k.only({"alpha", "aspect", "k_stretch", "k_shear", "k_wale", "k_fold", "max_steps", "tolerance", "max_move", "cg_iterations"});

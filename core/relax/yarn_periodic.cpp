@@ -140,10 +140,26 @@ PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLib
     for (int copy = 0; copy < patch.tiles; ++copy)
       for (int t = 0; t < per_copy; ++t) face_repeat.emplace_back(copy, r / pattern.height());
   }
-  // Points of no face (cables, on the course line above their row) go by position: the repeat of the row below.
+  // A cable's crossing yarn (between two rows, reaching into both) goes with the stitch below it: of the
+  // nearest points along its yarn that have a face, the one in the lower row. Other points of no face (turns,
+  // bind-offs) go by position: the repeat of the row below.
+  const auto& yarn = patch.yarn;
+  const auto below_cable = [&](int p) {
+    const int c = yarn.yarn_of(p), begin = yarn.curve_start[c], end = yarn.curve_start[c + 1];
+    int best = -1;
+    for (int step : {-1, 1}) {
+      int q = p;
+      while (q >= begin && q < end && yarn.point_face[q] < 0) q += step;
+      if (q < begin || q >= end) continue;
+      const int f = yarn.point_face[q];
+      if (best < 0 || stitch.faces[f].row < stitch.faces[best].row) best = f;
+    }
+    return best;
+  };
   std::vector<std::pair<int, int>> repeat;
-  for (size_t p = 0; p < patch.yarn.points.size(); ++p) {
-    const int f = patch.yarn.point_face[p];
+  for (size_t p = 0; p < yarn.points.size(); ++p) {
+    int f = yarn.point_face[p];
+    if (f < 0 && yarn.point_type[p] >= 0 && yarn.type_names[yarn.point_type[p]].starts_with("cable")) f = below_cable(static_cast<int>(p));
     if (f >= 0 && f < static_cast<int>(face_repeat.size())) {
       repeat.push_back(face_repeat[f]);
       continue;

@@ -22,6 +22,11 @@ void EmitOptions::validate() const {
 
 namespace {
 
+/// The share of each neighbouring stitch's height a cable face takes (open_cable_faces). A round share keeps
+/// the emitted points on the 0.1 µm grid that relax::position_key matches tilings by (0.45 put some of them
+/// exactly half-way between its points, where rounding may go either way).
+constexpr double kCableRoom = 0.4;
+
 /// A crossing point shared by the pieces of neighbouring faces: an edge, which of its two crossing places,
 /// and for cable edges which side of the cable face (1 = the stitch below, 2 = the stitch above).
 struct CrossingKey {
@@ -55,6 +60,7 @@ public:
     check_wale_directions();
     vertex_normals();
     collect_cables();
+    open_cable_faces();
     for (int f = 0; f < static_cast<int>(m_mesh.faces.size()); ++f) emit_face(f, report);
     for (const auto& run : m_cable_runs) emit_cable(run, report);
     join_turns(report);
@@ -81,10 +87,22 @@ private:
     for (int k = 0; k < n; ++k) {
       if (k <= nb) fr.canonical.emplace_back(static_cast<double>(k) / nb, 0.0);
       else fr.canonical.emplace_back(static_cast<double>(nt - (k - nb - 1)) / nt, 1.0);
-      fr.position.push_back(m_mesh.vertices[face.vertex(k)]);
+      fr.position.push_back(corner(face, k));
       fr.normal.push_back(m_normal[face.vertex(k)]);
     }
     return fr;
+  }
+
+  /// Where a face's k-th vertex is for that face: its bottom chain where the stitches above a cable face see
+  /// it (m_raised), its top chain where the stitches below one do (m_lowered); elsewhere the mesh's vertex.
+  const Eigen::Vector3d& corner(const StitchFace& face, int k) const {
+    return k <= face.bottom ? m_raised[face.vertex(k)] : m_lowered[face.vertex(k)];
+  }
+
+  Eigen::Vector3d centre(const StitchFace& face) const {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < face.size(); ++k) c += corner(face, k);
+    return c / static_cast<double>(face.size());
   }
 
   /// A model point (u, v, h) on the face: mean value coordinates over the canonical polygon, then h yarn
@@ -107,8 +125,14 @@ private:
     if (inserted) {
       const int lo = std::min(a, b), hi = std::max(a, b);
       const double t = wale ? (slot == 0 ? kWaleCrossing : 1 - kWaleCrossing) : kCourseSlots[slot];
-      const Eigen::Vector3d& pl = m_mesh.vertices[lo];
-      Eigen::Vector3d pos = pl + t * (m_mesh.vertices[hi] - pl);
+      // A wale edge runs from a (on its row's bottom line) to b (on the top line); a cable edge's crossings
+      // sit on the line as the stitches on their side see it (open_cable_faces).
+      const auto at = [&](int v) -> const Eigen::Vector3d& {
+        if (wale) return v == a ? m_raised[v] : m_lowered[v];
+        return side == 1 ? m_lowered[v] : side == 2 ? m_raised[v] : m_mesh.vertices[v];
+      };
+      const Eigen::Vector3d& pl = at(lo);
+      Eigen::Vector3d pos = pl + t * (at(hi) - pl);
       // A cable edge has two crossings at each slot: the stitch below's into the cable (side 1) and the
       // cable's into the stitch above (side 2). Two yarns cannot share a point, so each sits one yarn radius
       // toward its stitch (at most 0.4 of the way to the stitch's centre), and the cable spans the gap.
@@ -128,9 +152,7 @@ private:
     for (int k = 0; k < uses.count; ++k) {
       const auto& face = m_mesh.faces[uses.use[k].face];
       if (face.is_top(uses.use[k].local) != below) continue;
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (int v : face.vertices) centre += m_mesh.vertices[v];
-      const Eigen::Vector3d to = centre / static_cast<double>(face.size()) - pos;
+      const Eigen::Vector3d to = centre(face) - pos;
       const double d = to.norm();
       return d > 0 ? Eigen::Vector3d(pos + std::min(m_radius, 0.4 * d) / d * to) : pos;
     }
@@ -280,6 +302,43 @@ private:
     std::sort(m_cable_runs.begin(), m_cable_runs.end(), [](const CableRun& x, const CableRun& y) { return x.edges < y.edges; });
   }
 
+  /// Yuksel 2012 §4.5 places the cable face between two rows (Fig. 9, right). The stitch mesh has no room
+  /// there, so the face takes kCableRoom of the height of the stitches on either side: each vertex inside a
+  /// cable run is seen kCableRoom down its wale edge by the stitches below (m_lowered) and as far up by those
+  /// above (m_raised), and their models are emitted in what is left. The crossing then takes most of a row's
+  /// height, as in a real cable, not a flat band along the course line. A run's end vertices, and any vertex
+  /// that is also on an uncabled course edge or lacks a wale edge on either side, stay where they are.
+  void open_cable_faces() {
+    m_lowered = m_raised = m_mesh.vertices;
+    if (m_cable_runs.empty()) return;
+    std::unordered_set<int> fixed;
+    std::unordered_map<int, std::pair<Eigen::Vector3d, int>> down, up;  // sum and count of wale edges' far ends
+    for (const auto& face : m_mesh.faces) {
+      const int n = face.size(), nb = face.bottom;
+      for (int j = 0; j < face.top(); ++j)
+        if (!is_cable(face.vertex(n - 1 - j), face.vertex(n - 2 - j))) fixed.insert(face.vertex(n - 1 - j)), fixed.insert(face.vertex(n - 2 - j));
+      for (int j = 0; j < nb; ++j)
+        if (!is_cable(face.vertex(j), face.vertex(j + 1))) fixed.insert(face.vertex(j)), fixed.insert(face.vertex(j + 1));
+      const auto add = [](auto& to, int v, const Eigen::Vector3d& far) {
+        auto& [sum, count] = to.try_emplace(v, Eigen::Vector3d::Zero(), 0).first->second;
+        sum += far, ++count;
+      };
+      add(down, face.vertex(nb + 1), m_mesh.vertices[face.vertex(nb)]);
+      add(down, face.vertex(n - 1), m_mesh.vertices[face.vertex(0)]);
+      add(up, face.vertex(nb), m_mesh.vertices[face.vertex(nb + 1)]);
+      add(up, face.vertex(0), m_mesh.vertices[face.vertex(n - 1)]);
+    }
+    for (const auto& run : m_cable_runs)
+      for (size_t i = 1; i < run.edges.size(); ++i) {
+        const int v = run.edges[i].first;
+        const auto d = down.find(v), u = up.find(v);
+        if (fixed.count(v) || d == down.end() || u == up.end()) continue;
+        const Eigen::Vector3d& p = m_mesh.vertices[v];
+        m_lowered[v] = p + kCableRoom * (d->second.first / d->second.second - p);
+        m_raised[v] = p + kCableRoom * (u->second.first / u->second.second - p);
+      }
+  }
+
   void emit_cable(const CableRun& run, EmitReport& report) {
     const int n = static_cast<int>(run.edges.size());
     const int s = run.mark.shift;
@@ -292,11 +351,11 @@ private:
       throw Error("", "cable edge " + std::to_string(run.edges[0].first) + "-" + std::to_string(run.edges[0].second),
                   "a cable of " + std::to_string(a) + " over " + std::to_string(b) + " stitches has no model (1 to 3 over 1 to 3)");
     const int type = type_id(name);
-    // The cable face is a band along the course line: u runs along the run's edges, v across the line toward
-    // the stitch above, h along the normal. Its crossings sit one yarn radius below and above the line; its
-    // strands cross from kBandLow to kBandHigh radii (v from 0 to 1), so that two strands of one side (equal
-    // bumps in h, shifted along u) pass each other at different heights instead of meeting, and all of them
-    // pass below the feet of the heads of the stitches above (which reach down toward the line).
+    // The cable face: u runs along the run's edges, v from the line as the stitches below see it to the line
+    // as those above do (open_cable_faces), h along the normal. Its crossings sit one more yarn radius
+    // toward their stitches; its strands cross from kBandLow to kBandHigh radii past those lines, so that two
+    // strands of one side (equal bumps in h, shifted along u) pass each other at different heights instead of
+    // meeting, and all of them pass below the feet of the heads of the stitches above.
     constexpr double kBandLow = -0.8, kBandHigh = 0.2;
     std::vector<Eigen::Vector3d> wale(n);
     for (int i = 0; i < n; ++i) {
@@ -311,11 +370,11 @@ private:
     const auto on_band = [&](const Eigen::Vector3d& uvh) {
       const double x = std::clamp(uvh.x(), 0.0, 1.0) * n;
       const int i = std::min(n - 1, static_cast<int>(x));
-      const double t = x - i;
+      const double t = x - i, v = uvh.y();
       const auto [va, vb] = run.edges[i];
-      const Eigen::Vector3d p = (1 - t) * m_mesh.vertices[va] + t * m_mesh.vertices[vb];
+      const Eigen::Vector3d low = (1 - t) * m_lowered[va] + t * m_lowered[vb], high = (1 - t) * m_raised[va] + t * m_raised[vb];
       const Eigen::Vector3d nrm = ((1 - t) * m_normal[va] + t * m_normal[vb]).normalized();
-      return Eigen::Vector3d(p + m_radius * (front * uvh.z() * nrm + (kBandLow + (kBandHigh - kBandLow) * uvh.y()) * wale[i]));
+      return Eigen::Vector3d(low + v * (high - low) + m_radius * (front * uvh.z() * nrm + (kBandLow + (kBandHigh - kBandLow) * v) * wale[i]));
     };
     add_model(
         *model, -1, type, on_band,
@@ -355,10 +414,8 @@ private:
         const auto above = side.find(e.top_vertex);
         if (above == side.end() || m_node_ends[above->second.node].size() != 1) continue;
         const Eigen::Vector3d c1 = m_node_pos[e.node], c2 = m_node_pos[above->second.node];
-        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-        for (int v : m_mesh.faces[e.face].vertices) centre += m_mesh.vertices[v] / m_mesh.faces[e.face].size();
         const Eigen::Vector3d along = (c2 - c1).normalized();
-        Eigen::Vector3d out = c1 - centre;
+        Eigen::Vector3d out = c1 - centre(m_mesh.faces[e.face]);
         out -= out.dot(along) * along;
         out = out.norm() > 0 ? out.normalized() : out;
         Piece piece;
@@ -446,6 +503,7 @@ private:
   double m_radius;
   EdgeTable m_table;
   std::vector<Eigen::Vector3d> m_normal;
+  std::vector<Eigen::Vector3d> m_lowered, m_raised;  ///< vertices as the stitches below / above a cable face see them
   std::unordered_map<CrossingKey, int, CrossingHash> m_nodes;
   std::vector<Eigen::Vector3d> m_node_pos;
   std::vector<char> m_node_border;

@@ -20,20 +20,9 @@
 using skein::testing::ScratchDir;
 
 namespace {
-struct Run {
-  int status;
-  std::string output;
-};
+using skein::testing::Run;
 /// Runs the skein binary with arguments and returns its exit status and merged output.
-Run run_skein(const std::string& args) {
-  const std::string cmd = std::string(SKEIN_BIN) + " " + args + " 2>&1";
-  std::FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Run run_skein(const std::string& args) { return skein::testing::run_command(std::string(SKEIN_BIN) + " " + args); }
 /// `skein COMMAND -o OUTPUT` is refused: exit 2, `message` in what it prints, nothing written.
 void expect_refused(const std::string& command, const std::filesystem::path& output, const std::string& message) {
   const auto r = run_skein(command + " -o " + output.string());

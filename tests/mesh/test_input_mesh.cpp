@@ -152,7 +152,7 @@ TEST(InputMesh, EveryProblemIsListedAtOnce) {
   for (int k = 0; k < 3; ++k) {
     const double x = 10.0 * k;
     const int b = static_cast<int>(points.size());
-    for (const Eigen::Vector3d p : {Eigen::Vector3d(x, 0, 0), {x + 1, 0, 0}, {x + 1, 1, 0}, {x - 1, 0, 0}, {x - 1, -1, 0}}) points.push_back(p);
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(x, 0, 0), {x + 1, 0, 0}, {x + 1, 1, 0}, {x - 1, 0, 0}, {x - 1, -1, 0}}) points.push_back(p);
     faces.push_back({b, b + 1, b + 2});
     faces.push_back({b, b + 3, b + 4});
   }

@@ -136,7 +136,9 @@ TEST(YarnIo, ObjPolylinesAndTubes) {
       std::sscanf(line.c_str(), "vn %lf %lf %lf", &x, &yy, &z);
       EXPECT_NEAR(x * x + yy * yy + z * z, 1, 1e-4) << line;
     }
-    if (line.rfind("f ", 0) == 0) EXPECT_EQ(std::count(line.begin(), line.end(), '/'), 8) << line;
+    if (line.rfind("f ", 0) == 0) {
+      EXPECT_EQ(std::count(line.begin(), line.end(), '/'), 8) << line;
+    }
   }
   EXPECT_EQ(tv, tn);
 }

@@ -2,9 +2,13 @@
 // Shared test helpers: scratch files, tolerances and the bundled models.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <sys/wait.h>
 
 namespace skein::testing {
 
@@ -36,6 +40,21 @@ private:
 };
 
 inline std::filesystem::path models_dir() { return SKEIN_MODELS_DIR; }
+
+/// What a program run printed (stdout and stderr merged) and its exit status (-1 when a signal ended it).
+struct Run {
+  int status;
+  std::string output;
+};
+/// Runs a shell command line.
+inline Run run_command(const std::string& command) {
+  std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
 
 /// Runs `call` and returns the message of the skein::Error it throws ("" if it throws none).
 template <class F>

@@ -1,0 +1,1007 @@
+// skein's command line, callable in-process (skein's main, and skein-mpi's sweep cases). Thin: parses
+// arguments, calls the library, prints what happened.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <set>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "job.hpp"
+#include "sweep.hpp"
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "cuda/device.hpp"
+#include "relax/mesh_relax.hpp"
+#include "relax/yarn_audit.hpp"
+#include "relax/yarn_settings.hpp"
+#include "relax/yarn_standin.hpp"
+#include "relax/yarn_checkpoint.hpp"
+#include "relax/yarn_relax.hpp"
+#include "relax/yarn_io.hpp"
+#include "relax/yarn_local.hpp"
+#include "relax/yarn_periodic.hpp"
+#include "render/chart_view.hpp"
+#include "render/stitch_view.hpp"
+#include "render/yarn_view.hpp"
+#include "skein/config.hpp"
+#include "stitchmesh/edits.hpp"
+#include "stitchmesh/labeling.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/project.hpp"
+#include "stitchmesh/tessellation.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+
+namespace fs = std::filesystem;
+using namespace skein;
+using nlohmann::json;
+
+namespace skein::cli {
+
+int run_command_line(int argc, char** argv) {
+  CLI::App app{"skein: polygon mesh → knitted garment with yarn-level detail (Yuksel et al. 2012 stitch meshes)"};
+  app.set_version_flag("--version", SKEIN_VERSION);
+  app.require_subcommand(1);
+  bool quiet = false;
+  app.add_flag("-q,--quiet", quiet, "print warnings and errors only");
+  // --yarn and --gauge (issue 24): the yarn and the fabric as a knitter gives them (docs/yarn.md, "Yarn and gauge").
+  const auto add_fabric = [](CLI::App* cmd, FabricChoice& f, const char* yarn_sets, bool gauge) {
+    cmd->add_option("--yarn", f.yarn, std::string("yarn weight (lace, fingering, sport, dk, worsted, bulky, super-bulky, jumbo or the CYC number 0-7): ") + yarn_sets);
+    if (gauge) cmd->add_option("--gauge", f.gauge, "stockinette gauge, stitches (x rows) in 10 cm, e.g. 18x24 (rows: 1.3 x the stitches when left out): sets the stitch size");
+  };
+  const auto size_given = [](CLI::App* cmd) { return cmd->count("--stitch-size") + cmd->count("--stitch-height") > 0; };
+
+  // skein stitch
+  auto* stitch = app.add_subcommand("stitch", "label a mesh and tessellate it into a stitch mesh (.skein)");
+  std::string stitch_in, stitch_out, stitch_labels, stitch_png, stitch_png_types, stitch_stats;
+  bool auto_label = false;
+  int start_edge = -1;
+  mesh::StitchSize size;
+  bool height_given = false;
+  stitch->add_option("MESH", stitch_in, "mesh (OBJ, PLY, glTF, FBX, ... or a .skein project)")->required();
+  auto* auto_opt = stitch->add_flag("--auto-label", auto_label, "label every row automatically from the lowest border edge");
+  auto* labels_opt = stitch->add_option("--labels", stitch_labels, "use the labels stored in this .skein file");
+  auto_opt->excludes(labels_opt);
+  stitch->add_option("--start-edge", start_edge, "with --auto-label: the border edge to start from")->needs(auto_opt);
+  stitch->add_option("--stitch-size", size.width, "stitch width along the course [mm]")->capture_default_str();
+  stitch->add_option("--stitch-height", size.height, "stitch height along the wale [mm] (default: the width × 5/6)");
+  stitch->add_option("-o,--output", stitch_out, "project to write (.skein)")->required();
+  stitch->add_option("--png", stitch_png, "picture of the stitch mesh coloured by row");
+  stitch->add_option("--png-types", stitch_png_types, "picture of the stitch mesh coloured by stitch type");
+  stitch->add_option("--stats", stitch_stats, "write the stitch-mesh statistics as JSON here ('-' for stdout)");
+  FabricChoice stitch_fabric;
+  double max_stitches = mesh::kDefaultMaxStitches;
+  stitch->add_option("--max-stitches", max_stitches, "refuse a mesh that would make more stitches than this (its area over the stitch's)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  add_fabric(stitch, stitch_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
+
+  // skein label
+  auto* label = app.add_subcommand("label", "label a mesh's knitting rows and save the labels (.skein)");
+  std::string label_in, label_out;
+  int label_start = -1;
+  std::vector<int> flips;
+  label->add_option("MESH", label_in, "mesh or .skein project")->required();
+  std::vector<int> first_rows, next_rows;
+  auto* start_opt = label->add_option("--start-edge", label_start, "auto-label from this border edge (default: the lowest)");
+  auto* first_opt = label->add_option("--first-row", first_rows, "label by hand: first rows from these border edges (instead of auto-label)");
+  label->add_option("--next-row", next_rows, "then the next row across each of these course edges, in order")->needs(first_opt);
+  first_opt->excludes(start_opt);
+  label->add_option("--flip-row", flips, "flip these rows' wale direction after labeling");
+  mesh::StitchSize label_size;
+  std::vector<std::string> course_values, row_values;
+  std::vector<int> marked_wales;
+  label->add_option("--stitch-size", label_size.width, "stitch width for the tessellation values [mm]")->capture_default_str();
+  label->add_option("--stitch-height", label_size.height, "stitch height [mm] (default: the width × 5/6)");
+  label->add_option("--course-value", course_values, "set a course edge's stitch count: EDGE=N (repeatable)");
+  label->add_option("--row-value", row_values, "set a row's stitch-row count: ROW=N (repeatable)");
+  label->add_option("--mark-wale", marked_wales, "wale edges next to which increases and decreases go");
+  label->add_option("-o,--output", label_out, "labels and tessellation values to write (.skein)")->required();
+  FabricChoice label_fabric;
+  bool label_partial = false;
+  label->add_flag("--partial", label_partial, "write the labels even when some faces are not labeled yet (to go on later, by hand or in the app); exit 1");
+  add_fabric(label, label_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
+
+  // skein edit
+  auto* edit = app.add_subcommand("edit", "change stitch types of a stitch mesh: fills over rows, single faces");
+  std::string edit_in, edit_out, edit_fill, edit_rows, edit_type, edit_png;
+  std::vector<int> edit_faces;
+  edit->add_option("PROJECT", edit_in, ".skein project with a stitch mesh")->required();
+  edit->add_option("--fill", edit_fill, "stockinette, reverse, garter, seed, moss, rib or ribKxP");
+  int near_border = -1;
+  auto* rows_opt = edit->add_option("--rows", edit_rows, "rows A:B the fill covers (default: all)");
+  edit->add_option("--near-border", near_border, "the fill covers the N stitch rows next to each border (hems, cuffs, necklines)")
+      ->excludes(rows_opt);
+  edit->add_option("--set-type", edit_type, "stitch type for --faces");
+  edit->add_option("--faces", edit_faces, "face ids for --set-type");
+  edit->add_option("--png-types", edit_png, "picture coloured by stitch type");
+  edit->add_option("-o,--output", edit_out, "project to write")->required();
+
+  // skein yarn
+  auto* yarn_cmd = app.add_subcommand("yarn", "emit yarn curves from a stitch mesh (.bcc or OBJ polylines)");
+  std::string yarn_in, yarn_out, yarn_tubes, yarn_png, yarn_color = "type", stitches_dir;
+  double yarn_radius = 0;
+  yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
+  yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
+  yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
+  std::string yarn_ids;
+  yarn_cmd->add_option("--ids", yarn_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks");
+  std::string yarn_units = "mm";
+  yarn_cmd->add_option("--units", yarn_units, "units of the OBJ outputs (polylines and --tubes): mm, cm or m (Blender reads OBJ as metres); .bcc stays in mm")
+      ->check(CLI::IsMember({"mm", "cm", "m"}))->capture_default_str();
+  yarn_cmd->add_option("--yarn-radius", yarn_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  FabricChoice yarn_fabric;
+  add_fabric(yarn_cmd, yarn_fabric, "sets the yarn radius", false);
+  yarn_cmd->add_option("--png", yarn_png, "picture of the yarn as shaded tubes");
+  yarn_cmd->add_option("--color", yarn_color, "tube colour: type or yarn")->check(CLI::IsMember({"type", "yarn"}));
+  yarn_cmd->add_option("--stitches", stitches_dir, "stitch library folder (default: the bundled stitches/)");
+
+  // skein relax-mesh
+  auto* relax_cmd = app.add_subcommand("relax-mesh", "relax a stitch mesh on the limit surface of its input mesh (Yuksel 2012 §6.1)");
+  std::string relax_in, relax_out, relax_png, relax_png_before, relax_ply, relax_report;
+  relax::MeshRelaxOptions relax_options;
+  relax_cmd->add_option("PROJECT", relax_in, ".skein project with an input mesh and a stitch mesh")->required();
+  relax_cmd->add_option("-o,--output", relax_out, "project to write, with the relaxed stitch mesh")->required();
+  relax_cmd->add_option("--png", relax_png, "stretch picture after relaxation (area strain: blue compressed, red stretched)");
+  relax_cmd->add_option("--png-before", relax_png_before, "the same picture before relaxation");
+  relax_cmd->add_option("--ply", relax_ply, "relaxed stitch mesh as PLY with stretch colours and strains per face");
+  relax_cmd->add_option("--report", relax_report, "JSON report: rest lengths, steps, energy and displacement history");
+  relax_cmd->add_option("--alpha", relax_options.alpha, "rest-size scale α of N r_wale r_course = α A")->capture_default_str();
+  relax_cmd->add_option("--aspect", relax_options.aspect, "stitch aspect a = r_wale / r_course")->capture_default_str();
+  relax_cmd->add_option("--steps", relax_options.max_steps, "step cap")->capture_default_str();
+  relax_cmd->add_option("--tolerance", relax_options.tolerance, "stop when no vertex moves more than this × r_course in a step")->capture_default_str();
+  relax_cmd->add_option("--time-step", relax_options.time_step, "backward Euler step h [mm] (0: 1000 r_course)")->capture_default_str();
+  relax_cmd->add_option("--k-stretch", relax_options.k_stretch, "stretch stiffness κ_stretch")->capture_default_str();
+  relax_cmd->add_option("--k-shear", relax_options.k_shear, "shear stiffness κ_shear")->capture_default_str();
+  relax_cmd->add_option("--k-wale", relax_options.k_wale, "wale strut stiffness κ_wale")->capture_default_str();
+  relax_cmd->add_option("--k-fold", relax_options.k_fold, "stiffness of the guard against stitches turning over (0: off)")->capture_default_str();
+  relax_cmd->add_option("--max-move", relax_options.max_move, "largest move of a vertex in one step, × r_course")->capture_default_str();
+  relax_cmd->add_option("--cg-iterations", relax_options.cg_iterations, "conjugate-gradient iterations per step, at most")->capture_default_str();
+
+  // skein relax-yarn
+  auto* ry = app.add_subcommand("relax-yarn", "relax yarn at yarn level without letting one yarn pass through another (Yuksel 2012 §6.3, Leaf 2018 §3)");
+  std::string ry_in, ry_out, ry_method = "fire", ry_resume, ry_report, ry_log, ry_png, ry_stitches;
+  relax::YarnRelaxOptions ry_options;
+  double ry_radius = 0, ry_take_up = 1;
+  bool ry_no_guard = false, ry_no_shape = false, ry_no_audit = false, ry_no_bounds = false, ry_no_boundary = false, ry_no_patches = false;
+  std::string ry_checkpoint;
+  ry->add_option("INPUT", ry_in, ".skein project (its stitch faces drive shape preservation) or .bcc yarn")->required();
+  ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
+  ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast), euler (Leaf Algorithm 1) or lbfgs (quasi-Newton, CPU)")
+      ->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
+  std::string ry_backend = "auto";
+  ry->add_option("--backend", ry_backend, "auto (the GPU when one answers, else the CPU), cpu or cuda (an error without a GPU)")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
+  ry->add_option("--checkpoint", ry_checkpoint, "checkpoint file, written atomically every --checkpoint-every steps or minutes");
+  ry->add_option("--checkpoint-every", ry_options.checkpoint_every, "steps between checkpoints (default 500 with --checkpoint)");
+  ry->add_option("--checkpoint-minutes", ry_options.checkpoint_minutes, "minutes between checkpoints");
+  ry->add_option("--resume", ry_resume, "continue from this checkpoint (same input and method)");
+  ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
+  ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points, crossings");
+  ry->add_option("--png", ry_png, "picture of the relaxed yarn");
+  std::string ry_ids;
+  ry->add_option("--ids", ry_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks; a project's yarn");
+  std::string ry_views = "garment";
+  ry->add_option("--views", ry_views, "garment (three-quarter front, back-side) or flat (front, back) for --png")
+      ->check(CLI::IsMember({"garment", "flat"}))->capture_default_str();
+  ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
+  ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
+  ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
+  ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  std::string ry_stop_rule = "leaf";
+  ry->add_option("--stop-rule", ry_stop_rule, "leaf (eq. 5: --tolerance and --stall, relative to the first step) or force (the largest force per yarn "
+                                              "length at most --force-tolerance × B/r³, and the energy fell less than --energy-stall of itself over the "
+                                              "last --stall-window steps)")
+      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
+  ry->add_option("--force-tolerance", ry_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
+  ry->add_option("--stall-window", ry_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
+  ry->add_option("--energy-stall", ry_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
+      ->capture_default_str();
+  std::string ry_stop_scale = "first";
+  ry->add_option("--stop-scale", ry_stop_scale,
+                 "Leaf eq. 5's |∇E_0|: first (whole) or clipped (each point's force clipped to the largest of all but the largest 0.1 %, "
+                 "so that a few kinks of the emitted yarn do not end the run early; CPU only)")
+      ->check(CLI::IsMember({"first", "clipped"}))
+      ->capture_default_str();
+  ry->add_option("--jam-steps", ry_options.jam_steps,
+                 "stop, not converged, when for this many steps in a row the guard held yarn against yarn on every step and the energy "
+                 "fell by less than --jam-drop of itself over them (0: never)")
+      ->capture_default_str();
+  ry->add_option("--jam-drop", ry_options.jam_drop, "with --jam-steps: the energy's relative fall over the window that still counts as relaxing")
+      ->capture_default_str();
+  ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
+  ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
+  ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
+  ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
+  std::vector<std::string> ry_take_up_stitch;
+  ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
+  ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
+  FabricChoice ry_fabric;
+  add_fabric(ry, ry_fabric, "sets the yarn radius for a project", false);
+  ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
+  ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
+  ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
+  ry->add_option("--k-length", ry_options.params.k_length, "length penalty stiffness (Leaf eq. 1)")->capture_default_str();
+  ry->add_option("--k-contact", ry_options.params.k_contact, "contact stiffness (Leaf eq. 9)")->capture_default_str();
+  ry->add_option("--k-global", ry_options.params.k_global, "mass-proportional damping (Leaf eq. 11), Euler only")->capture_default_str();
+  ry->add_option("--time-step", ry_options.time_step, "Euler's step and FIRE's first step [s] (0: 0.002 for Euler, 0.02 for FIRE)")->capture_default_str();
+  ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
+  ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");
+  ry->add_flag("--no-shape", ry_no_shape, "no boundary constraints or patch-tracking forces");
+  ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
+  ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
+  ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
+  ry->add_flag("--active-set", ry_options.active_set.enabled,
+               "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
+  ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")->capture_default_str();
+  ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
+      ->capture_default_str();
+  ry->add_option("--contact-spacing", ry_options.sampling.spacing,
+                 "adaptive contact samples: the fewest per segment with no gap of yarn over this × r between two "
+                 "(at most 2√2 ≈ 2.828; 0: Leaf's odd count over L / 2r)")
+      ->capture_default_str();
+  std::string ry_warm, ry_warm_project;
+  relax::LocalRelaxOptions ry_local;
+  ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
+                                          "and --rings rings around them");
+  ry->add_option("--warm-project", ry_warm_project, "with --warm-start: the project its yarn was emitted from, before the edits");
+  ry->add_option("--rings", ry_local.rings, "with --warm-start: rings of stitches around the changed ones that relax (grown while the outermost moves)")
+      ->capture_default_str();
+  ry->add_option("--halo", ry_local.halo, "with --warm-start: rings beyond those, held in place")->capture_default_str();
+  bool ry_stand_in = false;
+  relax::StandInOptions ry_stand_in_options;
+  ry->add_flag("--stand-in", ry_stand_in,
+               "a fast preview, not a relaxation: each repeating pattern's periodic patch (stockinette, rib, seed ...) relaxed and mapped over "
+               "the faces knitted in it; the output is marked as a preview");
+  ry->add_option("--stand-in-min-faces", ry_stand_in_options.min_faces, "with --stand-in: fewest faces of a repeat for it to get a patch")
+      ->capture_default_str();
+  ry->add_option("--stand-in-max-period", ry_stand_in_options.max_period,
+                 "with --stand-in: longest repeat looked for, in stitches along the row and the wale (1 to 16)")
+      ->capture_default_str();
+  ry->add_option("--stand-in-reach", ry_stand_in_options.reach,
+                 "with --stand-in: rings of stitches beyond a region that join it where their type is the pattern's there")
+      ->capture_default_str();
+  std::vector<std::string> ry_stand_in_patterns;
+  ry->add_option("--stand-in-pattern", ry_stand_in_patterns,
+                 "with --stand-in: a pattern tiled onto the garment that re-meshes (cables, lace, increases, decreases; patterns/FORMAT.md): "
+                 "its whole repeats get a stand-in too (repeat the option for several)");
+
+  // skein pattern
+  auto* pat = app.add_subcommand("pattern", "a knitting or weaving pattern written as text, tiled and optionally relaxed (Yuksel 2012 §5.3, Leaf 2018 §4)");
+  std::string pat_in, pat_out, pat_tile = "4x4", pat_report, pat_png, pat_log, pat_stitches, pat_backend = "auto";
+  mesh::StitchSize pat_size;
+  double pat_radius = 0, pat_take_up = 1;
+  bool pat_relax = false;
+  relax::YarnRelaxOptions pat_options;
+  pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
+  pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
+  pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, of --relax --tiled, or of --preview (the periodic patch has its own)")
+      ->capture_default_str();
+  std::string pat_preview, pat_preview_png;
+  pat->add_option("--preview", pat_preview, "with --relax: the relaxed repeat tiled NxM (--tile) as yarn (.bcc or .obj), a preview of the fabric");
+  pat->add_option("--preview-png", pat_preview_png, "with --relax: picture of the --tile NxM preview, front and back");
+  bool pat_tiled = false;
+  pat->add_flag("--relax", pat_relax, "relax the pattern's periodic patch (Leaf 2018 §5; FIRE, pull-through guard) and write it");
+  pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
+  pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
+  pat->add_option("--png", pat_png, "picture of the yarn, front and back");
+  std::string pat_ids, pat_chart_png;
+  pat->add_option("--chart-png", pat_chart_png, "the repeat drawn as a knitting chart in the Craft Yarn Council's symbols (patterns/FORMAT.md), as skein "
+                                                "read it; knits and tiles");
+  pat->add_option("--ids", pat_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md): knits and tiles, "
+                                    "emitted or relaxed --tiled");
+  pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
+  pat->add_option("--stitch-size", pat_size.width, "knits: stitch width [mm]; wovens: yarn spacing is 4 yarn radii")->capture_default_str();
+  pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
+  pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  FabricChoice pat_fabric;
+  add_fabric(pat, pat_fabric, "sets the yarn radius and, without --gauge, the stitch size of its standard gauge", true);
+  pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
+  std::vector<std::string> pat_take_up_stitch;
+  pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
+  std::string pat_period;
+  pat->add_option("--period", pat_period, "with --relax: the repeat's period x its emitted size, along the course x the wale (e.g. 0.9x1)");
+  double pat_gamma = 1;
+  pat->add_option("--gamma", pat_gamma, "with --relax: relax at gamma x the yarn radius and scale back by 1/gamma: 1/gamma of the yarn length (Leaf 2018 §6.2)")
+      ->check(CLI::Range(0.25, 4.0))->capture_default_str();
+  pat->add_option("--stitches", pat_stitches, "stitch library folder (default: the bundled stitches/)");
+  pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
+  pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
+  pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
+  pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
+  std::string pat_method = "lbfgs";
+  pat->add_option("--method", pat_method, "with --relax: lbfgs, fire or euler, as relax-yarn's")->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
+  std::string pat_stop_rule = "force";
+  pat->add_option("--stop-rule", pat_stop_rule, "with --relax: force (the largest force per yarn length against the yarn's bending force B/r³, and the energy "
+                                                "stalled) or leaf (eq. 5, relative to the first step), as relax-yarn's")
+      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
+  pat->add_option("--force-tolerance", pat_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
+  pat->add_option("--stall-window", pat_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
+  pat->add_option("--energy-stall", pat_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
+      ->capture_default_str();
+  std::string pat_free_axes;
+  pat->add_option("--free-period", pat_free_axes,
+                  "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report; "
+                  "x (no value: the width, the rows held at the height of the gauge), y or xy (frictionless yarn's rows may slide apart: "
+                  "docs/patterns.md)")
+      ->expected(0, 1)->default_str("x")->check(CLI::IsMember({"xy", "x", "y"}));
+  pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
+  pat->add_option("--k-bend", pat_options.params.k_bend, "with --relax: bending stiffness (Leaf eq. 7), as relax-yarn's")->capture_default_str();
+  pat->add_option("--k-contact", pat_options.params.k_contact, "with --relax: contact stiffness (Leaf eq. 9), as relax-yarn's")->capture_default_str();
+  pat->add_flag("--shear", pat_options.period.shear, "with --free-period: the repeat may shear too (a diagonal pattern); without it only its two lengths relax");
+  pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
+      ->capture_default_str();
+  std::string pat_views = "flat";
+  int pat_panel = 900;
+  pat->add_option("--views", pat_views, "flat (front and back) or front, for --png")->check(CLI::IsMember({"flat", "front"}))->capture_default_str();
+  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(CLI::Range(64, 4096))->capture_default_str();
+  std::string pat_onto, pat_rows;
+  int pat_face = 0;
+  auto* onto_opt = pat->add_option("--onto", pat_onto, "tile the pattern onto this project's stitch mesh instead (-o writes the project)");
+  pat->add_option("--face", pat_face, "with --onto: the stitch that takes the pattern's first stitch")->needs(onto_opt)->capture_default_str();
+  pat->add_option("--rows", pat_rows, "with --onto: the rows A:B the pattern covers (default: all)")->needs(onto_opt);
+  bool pat_no_audit = false;
+  pat->add_flag("--no-audit", pat_no_audit, "with --relax: skip the per-step topology audit");
+
+  // skein audit
+  auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
+  std::string audit_before, audit_after;
+  audit->add_option("BEFORE", audit_before, "yarn before (.bcc)")->required();
+  audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
+  double audit_deviation = 0.1;
+  audit->add_option("--deviation", audit_deviation, "the crossing test's polylines stay this close to the curves, × r (edges per segment from its curvature)")
+      ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
+
+  // skein run
+  auto* run_cmd = app.add_subcommand("run", "run a job file: the whole pipeline from a mesh to relaxed yarn, unattended (docs/jobs.md)");
+  std::string run_file, run_output;
+  bool run_resume = false;
+  run_cmd->add_option("JOB", run_file, "job file (.json)")->required();
+  run_cmd->add_option("-o,--output", run_output, "output folder (default: the job's \"output\")");
+  run_cmd->add_flag("--resume", run_resume, "go on from the yarn checkpoint in the output folder");
+  double run_seconds = -1;
+  run_cmd->add_option("--yarn-seconds", run_seconds, "wall-time cap of the yarn relaxation [s], in place of the job's (0: none; for overnight runs)");
+
+  // skein sweep
+  auto* sweep_cmd = app.add_subcommand("sweep", "relax each case of a sweep file (patterns x yarns x gauges x gamma x take-up) in this process: one report, "
+                                                "table and chart (docs/sweeps.md; skein-mpi sweep shares the cases among MPI ranks)");
+  std::string sweep_file, sweep_output;
+  sweep_cmd->add_option("SWEEP", sweep_file, "sweep file (.json)")->required();
+  sweep_cmd->add_option("-o,--output", sweep_output, "output folder (default: the sweep's \"output\")");
+
+  // skein stats
+  auto* stats = app.add_subcommand("stats", "counts and validity of a mesh, labeling, stitch mesh or yarn (.bcc)");
+  std::string stats_in;
+  bool stats_json_flag = false;
+  stats->add_option("FILE", stats_in, "mesh or .skein project")->required();
+  std::string stats_out;
+  stats->add_flag("--json", stats_json_flag, "print JSON (default: text)");
+  stats->add_option("-o,--output", stats_out, "write the JSON here instead of printing it");
+
+  // skein render
+  auto* render_cmd = app.add_subcommand("render", "draw a project's stitch mesh to PNG");
+  std::string render_in, render_out, render_color = "row";
+  bool render_yarn = false;
+  double render_radius = 0;
+  render_cmd->add_option("INPUT", render_in, ".skein project (its stitch mesh, or with --yarn its yarn) or .bcc yarn")->required();
+  render_cmd->add_option("-o,--output", render_out, "PNG to write")->required();
+  render_cmd->add_flag("--yarn", render_yarn, "draw the project's yarn as tubes instead of its stitch mesh");
+  render_cmd->add_option("--yarn-radius", render_radius, "yarn radius [mm] for --yarn (default: a tenth of the stitch width)");
+  render_cmd->add_option("--color", render_color, "row or type for stitch meshes; type or yarn for yarn")
+      ->check(CLI::IsMember({"row", "type", "yarn"}));
+  std::string render_views = "garment";
+  render_cmd->add_option("--views", render_views, "garment (three-quarter front, back-side) or flat (front, back)")
+      ->check(CLI::IsMember({"garment", "flat"}));
+
+  // skein devices
+  auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
+
+  CLI11_PARSE(app, argc, argv);
+  // The log goes to stderr, so that what a command prints as data (--stats -, a script's CSV) stays clean.
+  if (!spdlog::get("skein")) spdlog::set_default_logger(spdlog::stderr_color_mt("skein"));  // once a process
+  spdlog::set_pattern("[%H:%M:%S.%e] %^%l%$ %v");
+  spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::info);
+  height_given = stitch->count("--stitch-height") > 0;
+
+  try {
+    if (*stitch) {
+      if (!auto_label && stitch_labels.empty()) throw Error("", "skein stitch", "give --auto-label or --labels FILE");
+      if (!height_given) size.height = size.width * 5.0 / 6.0;
+      const auto fabric = resolve_fabric(stitch_fabric, size_given(stitch), false);
+      if (fabric.size) size = *fabric.size;
+      if (!stitch_fabric.yarn.empty()) spdlog::info("stitch size {:.3g} x {:.3g} mm for {} yarn; give --yarn to skein yarn too", size.width, size.height, stitch_fabric.yarn);
+      size.validate();
+      for (const auto& p : {stitch_out, stitch_png, stitch_png_types})
+        if (!p.empty()) check_writable(p);
+      Stopwatch total, t;
+      mesh::Project project;
+      project.stitch_size = size;
+      project.input = load_input(stitch_in);
+      const auto& m = *project.input;
+      spdlog::info("loaded {}: {} vertices, {} faces ({:.3f} s)", stitch_in, m.num_vertices(), m.num_faces(), t.seconds());
+      mesh::check_stitch_count(m, size, max_stitches);  // before any work that grows with the stitch count
+      t = {};
+      std::optional<mesh::TessellationValues> stored_values;
+      if (auto_label) {
+        project.labels = mesh::auto_label(m, start_edge >= 0 ? start_edge : mesh::default_start_edge(m));
+      } else {
+        auto stored = labels_for(m, stitch_labels);
+        project.labels = std::move(stored.first);
+        stored_values = std::move(stored.second);
+      }
+      const auto report = mesh::validate_labels(m, *project.labels);
+      spdlog::info("labeled {} rows ({:.3f} s); {} edges with opposite wale directions on their two sides", project.labels->rows, t.seconds(),
+                   report.mismatches.size());
+      log_face_problems(stitch_in, m, report, spdlog::level::err);
+      t = {};
+      if (stored_values && !size_given(stitch) && !fabric.size) {
+        project.values = std::move(stored_values);
+        spdlog::info("using the tessellation values stored in {}", stitch_labels);
+      } else {
+        project.values = mesh::initial_values(m, *project.labels, size);
+      }
+      project.stitch = mesh::tessellate(m, *project.labels, *project.values);
+      const auto s = mesh::stitch_stats(*project.stitch);
+      spdlog::info("tessellated: {} stitch faces, {} rows, {} increases, {} decreases ({:.3f} s)", s.faces, s.rows, s.increases, s.decreases,
+                   t.seconds());
+      if (!s.valid) spdlog::error("the stitch mesh breaks rules:\n{}", mesh::validate(*project.stitch).summary());
+      mesh::write_project(project, stitch_out);
+      spdlog::info("wrote {} (total {:.2f} s)", stitch_out, total.seconds());
+      if (!stitch_png.empty()) render_stitch_mesh(*project.stitch, stitch_png, render::ColorBy::Row);
+      if (!stitch_png_types.empty()) render_stitch_mesh(*project.stitch, stitch_png_types, render::ColorBy::StitchType);
+      if (!stitch_stats.empty()) write_json(stats_json(*project.stitch), stitch_stats);
+      return s.valid ? 0 : 1;
+    }
+    if (*label) {
+      check_writable(label_out);
+      const auto label_fabric_size = resolve_fabric(label_fabric, size_given(label), false).size;
+      mesh::Project project;
+      project.input = load_input(label_in);
+      const auto& m = *project.input;
+      if (first_rows.empty()) {
+        project.labels = mesh::auto_label(m, label_start >= 0 ? label_start : mesh::default_start_edge(m));
+      } else {
+        project.labels = mesh::Labeling(m);
+        for (int e : first_rows) mesh::label_first_row(m, *project.labels, e);
+        for (int e : next_rows) mesh::label_next_row(m, *project.labels, e);
+      }
+      for (int r : flips) {
+        if (r < 0 || r >= project.labels->rows) throw Error("", "--flip-row " + std::to_string(r), "no such row (there are " + std::to_string(project.labels->rows) + ")");
+        mesh::flip_row(*project.labels, r);
+      }
+      const auto report = mesh::validate_labels(m, *project.labels);
+      log_face_problems(label_in, m, report, label_partial ? spdlog::level::warn : spdlog::level::err);
+      for (const auto& [e, why] : report.mismatches) spdlog::warn("{}: edge {}: {}", label_in, e, why);
+      if (!report.valid() && !label_partial)
+        throw Error(label_in, "face " + std::to_string(report.face_problems.front().first),
+                    std::to_string(report.face_problems.size()) + " of " + std::to_string(m.num_faces()) +
+                        " faces are not labeled (listed above); nothing written. --partial writes the labels made so far");
+      if (label->count("--stitch-height") == 0) label_size.height = label_size.width * 5.0 / 6.0;
+      if (label_fabric_size) label_size = *label_fabric_size;
+      project.stitch_size = label_size;
+      if (report.valid()) {
+        project.values = mesh::initial_values(m, *project.labels, label_size);
+        for (const auto& a : course_values) {
+          const auto [e, n] = parse_assignment("--course-value", a);
+          mesh::set_course_value(m, *project.labels, *project.values, e, n);
+        }
+        for (const auto& a : row_values) {
+          const auto [r, n] = parse_assignment("--row-value", a);
+          mesh::set_row_value(m, *project.labels, *project.values, r, n);
+        }
+        for (int e : marked_wales) mesh::mark_wale_edge(m, *project.labels, *project.values, e, true);
+      }
+      mesh::write_project(project, label_out);
+      spdlog::info("{} rows; wrote {}", project.labels->rows, label_out);
+      return report.valid() ? 0 : 1;
+    }
+    if (*edit) {
+      check_writable(edit_out);
+      auto project = mesh::read_project(edit_in);
+      if (!project.stitch) throw Error(edit_in, "", "holds no stitch mesh; run 'skein stitch' first");
+      auto& sm = *project.stitch;
+      if (!edit_fill.empty()) {
+        const auto pattern = mesh::parse_fill(edit_fill);
+        std::vector<int> faces;
+        if (near_border >= 0) {
+          faces = mesh::faces_near_border(sm, near_border);
+        } else {
+          const auto [a, b] = edit_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(edit_rows);
+          for (int f = 0; f < static_cast<int>(sm.faces.size()); ++f)
+            if (sm.faces[f].row >= a && sm.faces[f].row <= b) faces.push_back(f);
+        }
+        sm = mesh::fill(sm, faces, pattern);
+        spdlog::info("filled {} faces with {}", faces.size(), edit_fill);
+      }
+      if (!edit_type.empty()) sm = mesh::set_stitch_type(sm, edit_faces, edit_type);
+      mesh::write_project(project, edit_out);
+      if (!edit_png.empty()) render_stitch_mesh(sm, edit_png, render::ColorBy::StitchType);
+      return 0;
+    }
+    if (*run_cmd) {
+      auto job = read_job(run_file);
+      if (!run_output.empty()) job.output = run_output;
+      if (run_seconds >= 0 && job.relax_yarn) job.relax_yarn->max_seconds = run_seconds;
+      return run_job(job, run_resume, !quiet && isatty(fileno(stderr)));
+    }
+    if (*sweep_cmd) {
+      auto sweep = read_sweep(sweep_file);
+      if (!sweep_output.empty()) sweep.output = sweep_output;
+      prepare_sweep_output(sweep);
+      Stopwatch t;
+      auto rows = run_sweep_cases(sweep, 0, 1);
+      return write_sweep(sweep, std::move(rows), t.seconds(), 1);
+    }
+    if (*stats) {
+      json j;
+      if (is_bcc(stats_in)) {
+        j = yarn_json(relax::read_bcc(stats_in));
+      } else if (is_project(stats_in)) {
+        const auto project = mesh::read_project(stats_in);
+        if (project.stitch) j = stats_json(*project.stitch);
+        else if (project.labels) j = {{"kind", "labeled-mesh"}, {"mesh", mesh_json(*project.input)}, {"labels", labels_json(*project.input, *project.labels)}};
+        else if (project.input) j = mesh_json(*project.input);
+      } else {
+        j = mesh_json(mesh::load_mesh(stats_in));
+      }
+      if (!stats_out.empty()) {
+        write_json(j, stats_out);
+      } else if (stats_json_flag) {
+        std::cout << j.dump(2) << "\n";
+      } else {
+        print_text(j, "");
+      }
+      return 0;
+    }
+    if (*render_cmd) {
+      check_writable(render_out);
+      if (render_yarn || is_bcc(render_in)) {
+        render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out,
+                          render_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType, render_views);
+        return 0;
+      }
+      const auto project = mesh::read_project(render_in);
+      if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
+      render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row, render_views);
+      return 0;
+    }
+    if (*relax_cmd) {
+      for (const auto& p : {relax_out, relax_png, relax_png_before, relax_ply, relax_report})
+        if (!p.empty()) check_writable(p);
+      auto project = mesh::read_project(relax_in);
+      if (!project.input || !project.stitch) throw Error(relax_in, "", "needs an input mesh and a stitch mesh (run 'skein stitch' first)");
+      Stopwatch t;
+      relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, relax_options);
+      spdlog::info("attached {} stitch vertices to the limit surface; rest r_course = {:.3f} mm, r_wale = {:.3f} mm ({:.2f} s)",
+                   project.stitch->vertices.size(), relaxer.r_course(), relaxer.r_wale(), t.seconds());
+      if (!relax_png_before.empty()) render_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale(), relax_png_before);
+      t = {};
+      const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+        spdlog::info("step {:4d}  energy {:.6g}  largest move {:.4f} mm  cg {:3d}  h {:.3g}", s.step, s.energy, s.max_displacement, s.cg_iterations, s.time_step);
+      });
+      spdlog::info("{} after {} steps ({:.2f} s)", report.converged ? "converged" : "stopped at the step cap", report.steps.size(), t.seconds());
+      spdlog::log(report.turned_over_after > 0 ? spdlog::level::warn : spdlog::level::info, "stitches turned over: {} after attachment, {} after relaxation",
+                  report.turned_over_before, report.turned_over_after);
+      project.stitch = relaxer.relaxed();
+      mesh::write_project(project, relax_out);
+      spdlog::info("wrote {}", relax_out);
+      if (!relax_png.empty()) render_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale(), relax_png);
+      if (!relax_ply.empty()) {
+        const auto strain = relax::face_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale());
+        render::write_ply(*project.stitch, stretch_colors(strain), {{"edge_strain", strain.edge_strain}, {"area_strain", strain.area_strain}}, relax_ply);
+        spdlog::info("wrote {}", relax_ply);
+      }
+      if (!relax_report.empty()) {
+        json steps = json::array();
+        for (const auto& s : report.steps)
+          steps.push_back({{"step", s.step}, {"energy", s.energy}, {"max_displacement", s.max_displacement}, {"cg_iterations", s.cg_iterations}, {"time_step", s.time_step}});
+        write_json({{"r_course", report.r_course}, {"r_wale", report.r_wale}, {"initial_energy", report.initial_energy}, {"converged", report.converged},
+                    {"turned_over_before", report.turned_over_before}, {"turned_over_after", report.turned_over_after}, {"steps", steps}},
+                   relax_report);
+      }
+      return 0;
+    }
+    if (*yarn_cmd) {
+      for (const auto& p : {yarn_out, yarn_tubes, yarn_png, yarn_ids})
+        if (!p.empty()) check_writable(p);
+      if (yarn_units != "mm" && is_bcc(yarn_out)) throw Error("", "--units " + yarn_units, "applies to OBJ outputs; a .bcc is in millimetres");
+      Stopwatch t;
+      mesh::EmitReport report;
+      if (const auto fabric = resolve_fabric(yarn_fabric, false, yarn_cmd->count("--yarn-radius") > 0); fabric.radius) yarn_radius = *fabric.radius;
+      const auto yarn = yarn_of(yarn_in, yarn_radius, stitches_dir, &report);
+      spdlog::info("emitted {} yarns ({} closed), {} control points, radius {:.4g} mm ({:.3f} s)", yarn.curves(),
+                   std::count(yarn.closed.begin(), yarn.closed.end(), 1), yarn.points.size(), yarn.radius, t.seconds());
+      spdlog::info("borders: {} cast-on stitches, {} bind-off pieces, {} turns, {} tied ends; {} cable faces", report.cast_on, report.bind_off,
+                   report.turns, report.tied_ends, report.cables);
+      // OBJ carries no units: scaled here to the ones asked for. A .bcc says "radius R mm" and stays in mm.
+      const double unit = yarn_units == "m" ? 1e-3 : yarn_units == "cm" ? 0.1 : 1.0;
+      auto scaled = yarn;
+      for (auto& p : scaled.points) p *= unit;
+      scaled.radius *= unit;
+      write_yarn(scaled, yarn_out, false, yarn_units);
+      spdlog::info("wrote {}", yarn_out);
+      if (!yarn_tubes.empty()) {
+        relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
+        spdlog::info("wrote {}", yarn_tubes);
+      }
+      if (!yarn_ids.empty()) {
+        relax::write_point_ids(yarn, *mesh::read_project(yarn_in).stitch, yarn_ids);
+        spdlog::info("wrote {}", yarn_ids);
+      }
+      if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
+      return 0;
+    }
+    if (*ry) {
+      for (const auto& p : {ry_out, ry_report, ry_log, ry_png, ry_checkpoint})
+        if (!p.empty()) check_writable(p);
+      if (is_project(ry_in) && std::filesystem::exists(ry_in)) {
+        // The yarn settings the app saved with the project stand where the command line gives none.
+        const auto project = mesh::read_project(ry_in);
+        if (!project.settings.empty()) {
+          const auto saved = relax::read_yarn_settings(project.settings, ry_in);
+          std::vector<std::string> taken;
+          const auto take = [&](const char* flag, auto apply) {
+            if (ry->count(flag) == 0) apply(), taken.push_back(flag);
+          };
+          take("--method", [&] { ry_method = relax::to_string(saved.relax.method); });
+          take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
+          take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
+          take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
+          take("--take-up", [&] { ry_take_up = saved.take_up; });
+          take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
+          take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
+          take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
+          take("--jam-steps", [&] { ry_options.jam_steps = saved.relax.jam_steps; });
+          take("--rings", [&] { ry_local.rings = saved.local.rings; });
+          take("--halo", [&] { ry_local.halo = saved.local.halo; });
+          std::string list;
+          for (const auto& flag : taken) list += (list.empty() ? "" : " ") + flag;
+          spdlog::info("{} carries yarn settings (saved by the app): using them for {}", ry_in, list);
+        }
+      }
+      if (const auto fabric = resolve_fabric(ry_fabric, false, ry->count("--yarn-radius") > 0); fabric.radius) {
+        if (is_bcc(ry_in)) throw Error("", "--yarn", "sets the radius of yarn emitted from a project; a .bcc keeps its own");
+        ry_radius = *fabric.radius;
+      }
+      ry_options.method = relax::parse_yarn_method(ry_method);
+      ry_options.clipped_scale = ry_stop_scale == "clipped";
+      ry_options.stop_rule = relax::parse_stop_rule(ry_stop_rule);
+      ry_options.guard.enabled = !ry_no_guard;
+      ry_options.guard.safe_bounds = !ry_no_bounds;
+      ry_options.audit = !ry_no_audit;
+      ry_options.shape.boundary = !ry_no_boundary;
+      ry_options.shape.patches = !ry_no_patches;
+      ry_options.checkpoint = ry_checkpoint;
+      if (!ry_checkpoint.empty() && ry_options.checkpoint_every == 0 && ry_options.checkpoint_minutes == 0) ry_options.checkpoint_every = 500;
+      ry_options.validate();
+      Stopwatch t;
+      mesh::YarnCurves yarn;
+      relax::ShapeTargets targets;
+      if (!is_bcc(ry_in) && !is_project(ry_in)) throw Error(ry_in, "", "relax-yarn reads a .skein project or .bcc yarn");
+      if (!ry_ids.empty() && is_bcc(ry_in)) throw Error("", "--ids", "names each control point's stitch face: give a .skein project (" + ry_in + " is bare yarn)");
+      if (!ry_ids.empty()) check_writable(ry_ids);
+      std::optional<mesh::StitchMesh> ids_mesh;  // the stitch mesh the yarn was emitted from, for --ids
+      const auto write_ids = [&](const mesh::YarnCurves& written) {
+        if (ry_ids.empty()) return;
+        relax::write_point_ids(written, *ids_mesh, ry_ids);
+        spdlog::info("wrote {}", ry_ids);
+      };
+      if (is_bcc(ry_in)) {
+        yarn = relax::read_bcc(ry_in);
+        if (!ry_no_shape) spdlog::info("{} is bare yarn: no stitch faces, so no shape preservation", ry_in);
+      } else {
+        const auto project = mesh::read_project(ry_in);
+        if (!project.stitch) throw Error(ry_in, "", "holds no stitch mesh; run 'skein stitch' first");
+        yarn = yarn_of(ry_in, ry_radius, ry_stitches);
+        if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
+        ids_mesh = *project.stitch;
+      }
+      if (!ry_warm.empty() || !ry_warm_project.empty()) {
+        if (ry_warm.empty() || ry_warm_project.empty() || !is_project(ry_in))
+          throw Error("", "--warm-start", "relaxes a .skein project from the relaxed yarn (--warm-start) of the project before the edits (--warm-project)");
+        if (!ry_resume.empty()) throw Error("", "--warm-start", "does not go with --resume");
+        const auto project = mesh::read_project(ry_in);
+        const auto previous_emitted = yarn_of(ry_warm_project, ry_radius, ry_stitches);
+        const auto previous = relax::read_bcc(ry_warm);
+        if (previous.curve_start != previous_emitted.curve_start)
+          throw Error(ry_warm, "", "holds other curves than the yarn of " + ry_warm_project + " (curve or point counts differ): it was not relaxed from it");
+        Eigen::Matrix3Xd previous_points(3, previous.points.size());
+        for (size_t p = 0; p < previous.points.size(); ++p) previous_points.col(p) = previous.points[p];
+        const auto splice = relax::splice_previous(yarn, previous_emitted, previous_points);
+        spdlog::info("warm start from {}: {} of {} control points emitted as before, {} new", ry_warm, yarn.points.size() - splice.changed(),
+                     yarn.points.size(), splice.changed());
+        relax::LocalRelaxReport local;
+        const auto points = relax::relax_locally(*project.stitch, yarn, splice, ry_options, ry_local, ry_take_up,
+                                                 parse_take_up("--take-up-stitch", ry_take_up_stitch), local);
+        if (local.stopped_by != "unsafe splice") {
+          const auto out = relax::with_points(yarn, points);
+          write_yarn(out, ry_out);
+          write_ids(out);
+          spdlog::info("{} after {} steps in {} rounds ({:.2f} s): {} stitches changed, {} rings, {} pull-through events; wrote {}", local.stopped_by,
+                       local.steps, local.rounds, local.wall_seconds, local.changed_stitches, local.rings,
+                       local.pull_through_events < 0 ? std::string("unaudited") : std::to_string(local.pull_through_events), ry_out);
+          if (!ry_report.empty())
+            write_json({{"input", ry_in}, {"converged", local.converged}, {"stopped_by", local.stopped_by}, {"steps", local.steps},
+                        {"wall_seconds", local.wall_seconds}, {"control_points", out.points.size()},
+                        {"pull_through_events", local.pull_through_events < 0 ? json(nullptr) : json(local.pull_through_events)},
+                        {"warm_start", {{"previous", ry_warm}, {"project", ry_warm_project}, {"changed_points", local.changed_points},
+                                        {"changed_stitches", local.changed_stitches}, {"rings", local.rings}, {"rounds", local.rounds},
+                                        {"relaxed_points", local.relaxed_points}, {"held_points", local.held_points},
+                                        {"last_boundary_move_r", local.last_boundary_move}, {"splice_crossings", local.splice_crossings}}},
+                        {"yarn", yarn_json(out)}},
+                       ry_report);
+          if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+          return local.stopped_by == "diverged" ? 1 : 0;
+        }
+        spdlog::warn("warm start: the splice would pass yarn through yarn at {} places; relaxing the whole garment from its emission instead",
+                     local.splice_crossings);
+      }
+      if (ry_stand_in) {
+        if (!is_project(ry_in)) throw Error(ry_in, "", "--stand-in maps patches over a project's stitch faces: give a .skein project");
+        if (!ry_resume.empty()) throw Error("", "--stand-in", "does not go with --resume");
+        const auto project = mesh::read_project(ry_in);
+        const auto& library = ry_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(ry_stitches);
+        relax::StandInReport stand_in;
+        ry_stand_in_options.take_up = ry_take_up;
+        ry_stand_in_options.take_up_by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
+        for (const auto& file : ry_stand_in_patterns) ry_stand_in_options.patterns.push_back(mesh::read_pattern(file));
+        const Eigen::Matrix3Xd points =
+            relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
+        // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
+        const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
+        auto probe = ry_options;
+        probe.max_steps = 0;
+        probe.audit = false;
+        probe.checkpoint.clear();
+        probe.checkpoint_every = 0;
+        probe.checkpoint_minutes = 0;
+        auto state = relax::initial_state(system, probe);
+        state.points = points;
+        const double energy = relax::make_cpu_yarn_relaxer(system, targets, probe)->run(state).energy;
+        const long crossings = static_cast<long>(relax::TopologyAuditor(system).crossings(system.points, points).size());
+        const auto out = relax::with_points(yarn, points);
+        write_yarn(out, ry_out, true);
+        write_ids(out);
+        spdlog::info("stand-in preview (not a relaxation) in {:.2f} s: {} repeats, {} of {} control points placed from their patches, {} following "
+                     "their yarn; {} crossings on the way from the emission; wrote {}",
+                     stand_in.seconds, stand_in.repeats.size(), stand_in.placed, out.points.size(), stand_in.following, crossings, ry_out);
+        if (!ry_report.empty()) {
+          json repeats = json::array();
+          for (const auto& t : stand_in.repeats)
+            repeats.push_back({{"pattern", t.pattern}, {"across", t.across}, {"up", t.up}, {"faces", t.faces}, {"patch_steps", t.patch_steps},
+                               {"patch_converged", t.converged}, {"patch_seconds", t.patch_seconds}});
+          write_json({{"input", ry_in}, {"preview", "stand-in"}, {"wall_seconds", stand_in.seconds}, {"energy", energy},
+                      {"control_points", out.points.size()}, {"pull_through_events", crossings},
+                      {"stand_in", {{"repeats", repeats}, {"placed_points", stand_in.placed}, {"following_points", stand_in.following},
+                                    {"taken_back_points", stand_in.taken_back}}},
+                      {"yarn", yarn_json(out)}},
+                     ry_report);
+        }
+        if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+        return 0;
+      }
+      const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
+      spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
+                   system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
+                   targets.boundary_loops.size(), targets.patches.size(), t.seconds());
+      auto state = relax::initial_state(system, ry_options);
+      if (!ry_resume.empty()) {
+        state = relax::read_checkpoint(ry_resume, relax::checkpoint_fingerprint(system, ry_options.method), system.num_points());
+        spdlog::info("resuming {} at step {}", ry_resume, state.step);
+      }
+      ry_options.interrupt = install_interrupt_handlers();
+      const json report = relax_and_write(yarn, system, targets, ry_options, state,
+                                          {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))});
+      if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
+      return exit_status(report);
+    }
+    if (*pat) {
+      int across = 0, up = 0;
+      char tail = 0;
+      if (std::sscanf(pat_tile.c_str(), "%dx%d%c", &across, &up, &tail) != 2 || across < 1 || up < 1)
+        throw Error("", "--tile", "expected NxM with N and M at least 1 (e.g. 4x4), found '" + pat_tile + "'");
+      const auto pattern = mesh::read_pattern(pat_in);
+      std::optional<render::Image> chart;  // drawn now (a woven pattern is refused before any work), written with the outputs
+      if (!pat_chart_png.empty()) {
+        check_writable(pat_chart_png);
+        chart = render::draw_chart(pattern);
+      }
+      const auto write_chart = [&] {
+        if (!chart) return;
+        render::write_png(*chart, pat_chart_png);
+        spdlog::info("wrote {}", pat_chart_png);
+      };
+      if (!pat_onto.empty()) {
+        check_writable(pat_out);
+        auto project = mesh::read_project(pat_onto);
+        if (!project.stitch) throw Error(pat_onto, "", "holds no stitch mesh; run 'skein stitch' first");
+        const auto [a, b] = pat_rows.empty() ? std::pair{0, INT32_MAX} : parse_rows(pat_rows);
+        std::vector<int> faces;
+        for (int f = 0; f < static_cast<int>(project.stitch->faces.size()); ++f)
+          if (project.stitch->faces[f].row >= a && project.stitch->faces[f].row <= b) faces.push_back(f);
+        mesh::TileReport tiled;
+        *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face, &tiled);
+        mesh::write_project(project, pat_out);
+        write_chart();
+        if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, render::ColorBy::StitchType);
+        if (tiled.repeats > 0)
+          spdlog::info("tiled {} from face {}: {} whole {} x {} repeats re-meshed ({} of the {} chosen stitches); wrote {}", pattern.name, pat_face,
+                       tiled.repeats, pattern.width(), pattern.height(), tiled.stitches, faces.size(), pat_out);
+        else spdlog::info("tiled {} over {} of {} chosen stitches from face {}; wrote {}", pattern.name, tiled.stitches, faces.size(), pat_face, pat_out);
+        return 0;
+      }
+      const auto fabric = resolve_fabric(pat_fabric, size_given(pat), pat->count("--yarn-radius") > 0);
+      if (fabric.size) pat_size = *fabric.size;
+      if (fabric.radius) pat_radius = *fabric.radius;
+      const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
+      mesh::YarnCurves yarn;
+      relax::ShapeTargets targets;
+      json pat_extra = {{"pattern", pattern.name}};
+      const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
+      // Leaf §6.2: the yarn is made and relaxed at gamma r, and the result scaled back by 1/gamma.
+      const double sim_radius = (pat_relax ? pat_gamma : 1.0) * radius;
+      const bool preview = !pat_preview.empty() || !pat_preview_png.empty();
+      if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
+      if (!pat_preview.empty()) check_writable(pat_preview);
+      std::optional<relax::PeriodicPatch> patch_kept;  // for the preview
+      std::optional<mesh::StitchMesh> ids_mesh;        // for --ids: the tiling's stitch mesh
+      if (!pat_ids.empty()) {
+        if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "--ids", "names each control point's stitch face, and a woven pattern has none");
+        if (pat_relax && !pat_tiled)
+          throw Error("", "--ids", "names each control point's stitch face in a tiling: the periodic patch is one repeat and its copies (add --tiled)");
+        check_writable(pat_ids);
+      }
+      const auto write_ids = [&] {
+        if (pat_ids.empty()) return;
+        relax::write_point_ids(yarn, *ids_mesh, pat_ids);
+        spdlog::info("wrote {}", pat_ids);
+      };
+      Eigen::Vector2d period_scale(1, 1);
+      if (pat_relax && !pat_tiled) {
+        auto patch = pattern.format == mesh::PatternFormat::Woven ? relax::periodic_woven_patch(pattern, 4 * radius, sim_radius)
+                                                                  : relax::periodic_patch(pattern, library, pat_size, sim_radius);
+        if (preview) patch_kept = patch;
+        spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
+                     std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
+        pat_extra = {{"pattern", pattern.name},
+                     {"periodic", {{"tiles", patch.tiles}, {"real_points", std::count(patch.ring.begin(), patch.ring.end(), 0)},
+                                   {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
+        yarn = std::move(patch.yarn);
+        targets.periodic = std::move(patch.map);
+      } else if (pattern.format == mesh::PatternFormat::Woven) {
+        yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius);
+      } else {
+        const auto stitch_mesh = mesh::pattern_stitch_mesh(pattern, across, up, pat_size);
+        mesh::EmitOptions emit;
+        emit.yarn_radius = sim_radius;
+        yarn = mesh::emit_yarn(stitch_mesh, library, emit);
+        targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
+        ids_mesh = stitch_mesh;
+      }
+      if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
+      spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
+      if (pat_relax) {
+        pat_options.audit = !pat_no_audit;
+        pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
+        pat_options.method = relax::parse_yarn_method(pat_method);
+        pat_options.period.free = pat->count("--free-period") > 0;
+        pat_options.period.free_x = pat_free_axes != "y";
+        pat_options.period.free_y = pat_free_axes == "y" || pat_free_axes == "xy";
+        if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
+        pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
+        pat_options.validate();
+        pat_extra["gamma"] = pat_gamma;
+        auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch), pat_options.sampling);
+        if (!pat_period.empty()) {
+          double sx = 0, sy = 0;
+          char tail = 0;
+          if (targets.periodic.empty()) throw Error("", "--period", "needs the periodic patch (not --tiled)");
+          if (std::sscanf(pat_period.c_str(), "%lfx%lf%c", &sx, &sy, &tail) != 2)
+            throw Error("", "--period", "expected SXxSY (e.g. 0.9x1), found '" + pat_period + "'");
+          relax::scale_period(targets.periodic, system.points, sx, sy);  // rest lengths stay those of the emitted yarn
+          pat_extra["period"] = {sx, sy};
+          period_scale = {sx, sy};
+        }
+        const auto color = pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType;
+        if (preview) pat_extra["preview"] = {{"output", pat_preview}, {"png", pat_preview_png}, {"tile", {across, up}}};
+        auto state = relax::initial_state(system, pat_options);
+        const json report = relax_and_write(yarn, system, targets, pat_options, state,
+                                            {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
+                                             !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
+                                             {pattern.width(), pattern.height()}});
+        if (preview && report.at("stopped_by") != "interrupted") {
+          // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
+          const auto tiled = pattern.format == mesh::PatternFormat::Woven
+                                 ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
+                                 : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
+          const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
+          auto out = relax::with_points(tiled, placed.points / pat_gamma);
+          out.radius /= pat_gamma;
+          if (!pat_preview.empty()) write_yarn(out, pat_preview);
+          if (!pat_preview_png.empty()) render_yarn_tubes(out, pat_preview_png, color, pat_views, pat_panel);
+          spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",
+                       across, up, placed.matched, out.points.size(), pat_preview.empty() ? std::string() : "; wrote " + pat_preview);
+        }
+        if (report.at("stopped_by") != "interrupted") write_ids(), write_chart();
+        return exit_status(report);
+      }
+      write_yarn(yarn, pat_out);
+      write_ids();
+      write_chart();
+      if (!pat_report.empty()) {
+        json j = {{"input", pat_in}, {"pattern", pattern.name}, {"source", pattern.note},
+                  {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},
+                  {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}};
+        if (!fabric.report.is_null()) j["fabric"] = fabric.report;
+        write_json(j, pat_report);
+      }
+      if (!pat_png.empty())
+        render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, pat_views,
+                          pat_panel);
+      spdlog::info("wrote {}", pat_out);
+      return 0;
+    }
+    if (*audit) {
+      const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);
+      if (before.curve_start != after.curve_start || before.closed != after.closed)
+        throw Error(audit_after, "", "holds other curves than " + audit_before + " (curve count, point counts or closed flags differ)");
+      const auto system = relax::make_yarn_system(before);
+      Eigen::Matrix3Xd q1(3, system.num_points());
+      for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
+      double largest = 0, squares = 0;
+      for (int p = 0; p < system.num_points(); ++p) {
+        const double d = (q1.col(p) - system.points.col(p)).norm();
+        largest = std::max(largest, d);
+        squares += d * d;
+      }
+      const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
+      const auto crossing_list = relax::TopologyAuditor(system, audit_deviation).crossings(system.points, q1);
+      const long crossings = static_cast<long>(crossing_list.size());
+      const auto links_before = relax::linking_numbers(before, audit_deviation), links_after = relax::linking_numbers(after, audit_deviation);
+      std::map<std::pair<int, int>, long> lk0, lk1;
+      for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
+      for (const auto& l : links_after) lk1[{l.a, l.b}] = l.number;
+      std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
+                << system.num_points() << "\nlargest control-point move: " << largest << " mm (" << largest / r
+                << " r)\nRMS control-point move: " << rms << " mm (" << rms / r << " r)\n"
+                << "centreline crossings on the straight path between the two states: " << crossings << "\n";
+      for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {
+        const auto& c = crossing_list[i];
+        std::cout << "  segments " << c.segment_a << " (points " << system.segment_points[c.segment_a][1] << "-" << system.segment_points[c.segment_a][2]
+                  << ") and " << c.segment_b << " (points " << system.segment_points[c.segment_b][1] << "-" << system.segment_points[c.segment_b][2]
+                  << ") near (" << c.where.x() << ", " << c.where.y() << ", " << c.where.z() << ")\n";
+      }
+      long changed = 0;
+      std::set<std::pair<int, int>> keys;
+      for (const auto& [k, v] : lk0) keys.insert(k);
+      for (const auto& [k, v] : lk1) keys.insert(k);
+      for (const auto& k : keys) {
+        const long a = lk0.count(k) ? lk0[k] : 0, b = lk1.count(k) ? lk1[k] : 0;
+        if (a == b) continue;
+        if (++changed <= 20) std::cout << "linking number of closed curves " << k.first << " and " << k.second << ": " << a << " -> " << b << "\n";
+      }
+      std::cout << "linking numbers changed: " << changed << " (of " << keys.size() << " pairs of closed curves that come near)\n";
+      return crossings == 0 && changed == 0 ? 0 : 1;
+    }
+    if (*devices) {
+      const auto q = cuda::query_devices();
+      std::cout << cuda::describe(q) << "\n";
+      return 0;
+    }
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace skein::cli
