@@ -35,6 +35,7 @@
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "skein/config.hpp"
+#include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/pattern.hpp"
@@ -283,7 +284,7 @@ int run_command_line(int argc, char** argv) {
   bool pat_relax = false;
   relax::YarnRelaxOptions pat_options;
   pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
-  pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines)")->required();
+  pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines); not needed when only --chart-png, --write-chart or --write-instructions is asked");
   pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, of --relax --tiled, or of --preview (the periodic patch has its own)")
       ->capture_default_str();
   std::string pat_preview, pat_preview_png;
@@ -297,6 +298,11 @@ int run_command_line(int argc, char** argv) {
   std::string pat_ids, pat_chart_png;
   pat->add_option("--chart-png", pat_chart_png, "the repeat drawn as a knitting chart in the Craft Yarn Council's symbols (patterns/FORMAT.md), as skein "
                                                 "read it; knits and tiles");
+  std::string pat_write_chart, pat_write_instructions;
+  pat->add_option("--write-chart", pat_write_chart, "the repeat as chart text (format chart: the Craft Yarn Council's symbols, patterns/FORMAT.md) that "
+                                                    "skein reads back as the same stitches; knits and tiles");
+  pat->add_option("--write-instructions", pat_write_instructions, "the repeat as written instructions (\"Row 1 (RS): k2, p2.\") that skein reads back "
+                                                                  "as the same stitches; knits and tiles");
   pat->add_option("--ids", pat_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md): knits and tiles, "
                                     "emitted or relaxed --tiled");
   pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
@@ -815,11 +821,34 @@ int run_command_line(int argc, char** argv) {
         check_writable(pat_chart_png);
         chart = render::draw_chart(pattern);
       }
+      // The pattern in the other notations, made now (a stitch no chart can say is refused before any work).
+      std::string chart_text, instructions;
+      try {
+        if (!pat_write_chart.empty()) check_writable(pat_write_chart), chart_text = mesh::write_chart_pattern(pattern);
+        if (!pat_write_instructions.empty()) check_writable(pat_write_instructions), instructions = mesh::write_written_pattern(pattern);
+      } catch (const Error& e) {
+        if (!e.file().empty()) throw;
+        throw Error(pat_in, e.place(), e.rule());
+      }
       const auto write_chart = [&] {
-        if (!chart) return;
-        render::write_png(*chart, pat_chart_png);
-        spdlog::info("wrote {}", pat_chart_png);
+        if (chart) {
+          render::write_png(*chart, pat_chart_png);
+          spdlog::info("wrote {}", pat_chart_png);
+        }
+        for (const auto& [path, text] : {std::pair{pat_write_chart, chart_text}, {pat_write_instructions, instructions}}) {
+          if (path.empty()) continue;
+          write_file_atomically(path, [&](std::ostream& out) { out << text; });
+          spdlog::info("wrote {}", path);
+        }
       };
+      if (pat_out.empty()) {
+        if (pat_relax || !pat_onto.empty() || !pat_png.empty() || !pat_report.empty() || !pat_ids.empty() ||
+            (!chart && chart_text.empty() && instructions.empty()))
+          throw Error("", "-o", "is required: the yarn (or with --onto the project) to write; only --chart-png, --write-chart and "
+                                "--write-instructions go without it");
+        write_chart();
+        return 0;
+      }
       if (!pat_onto.empty()) {
         check_writable(pat_out);
         auto project = mesh::read_project(pat_onto);

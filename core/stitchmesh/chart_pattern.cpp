@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <set>
+#include <tuple>
 #include <sstream>
 #include <vector>
 
@@ -66,6 +68,22 @@ struct MadeRow {
   int chart_line = 0;
 };
 
+/// A chart turned into written instructions: one made row per chart row, bottom first, and the chart's
+/// "# name:" and "# source:" lines.
+struct ChartReading {
+  std::vector<MadeRow> made;
+  std::vector<std::string> comments;
+};
+ChartReading read_chart(const std::string& text, const std::string& source);
+
+/// The written instructions of a chart reading, as the written reader takes them.
+std::string written_text(const ChartReading& reading) {
+  std::string written;
+  for (const auto& c : reading.comments) written += c + "\n";
+  for (const auto& m : reading.made) written += m.text + "\n";
+  return written;
+}
+
 }  // namespace
 
 bool is_chart_pattern(const std::string& text) {
@@ -80,7 +98,8 @@ bool is_chart_pattern(const std::string& text) {
   return false;
 }
 
-Pattern parse_chart_pattern(const std::string& text, const std::string& source) {
+namespace {
+ChartReading read_chart(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   auto key = default_key();
   bool round = false, started = false;
@@ -199,14 +218,19 @@ Pattern parse_chart_pattern(const std::string& text, const std::string& source) 
     out.text += ".";
     made.push_back(out);
   }
+  return {std::move(made), std::move(comments)};
+}
+}  // namespace
 
+Pattern parse_chart_pattern(const std::string& text, const std::string& source) {
+  const ChartReading reading = read_chart(text, source);
+  const auto& made = reading.made;
+  const int rows = static_cast<int>(made.size());
+  const auto at = [](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
   // The written instructions, read as written; their errors placed back on the chart.
-  std::string written;
-  for (const auto& c : comments) written += c + "\n";
-  const int first_row_line = static_cast<int>(comments.size()) + 1;
-  for (const auto& m : made) written += m.text + "\n";
+  const int first_row_line = static_cast<int>(reading.comments.size()) + 1;
   try {
-    return parse_written_pattern(written, source);
+    return parse_written_pattern(written_text(reading), source);
   } catch (const Error& e) {
     static const std::regex place(R"(^line (\d+)(?:, column (\d+))?$)"), mention(R"(\(line (\d+)\))");
     const auto chart_place = [&](int line, int column) {
@@ -233,6 +257,133 @@ Pattern parse_chart_pattern(const std::string& text, const std::string& source) 
     mapped.append(from, rule.cend());
     throw Error(source, where, mapped);
   }
+}
+
+namespace {
+
+/// The chart cells of a stitch type as seen from the front, left to right, in the symbols write_chart uses
+/// (the default key, and the keys kWrittenKeys adds); "" when a chart cannot say it yet.
+std::string cells_of_type(const std::string& type) {
+  static const std::map<std::string, std::string> cells = {{"k", "."},   {"p", "-"},    {"x", "t"},    {"s", "v"},     {"sk", "w"},
+                                                           {"d12k", "/"}, {"d21k", "\\"}, {"d12p", ")"}, {"d21p", "("},
+                                                           {"ys", "o\\"}, {"2u", "/o"},   {"y3y", "o^o"}};
+  const auto it = cells.find(type);
+  return it == cells.end() ? "" : it->second;
+}
+
+/// The keys write_chart gives the symbols the Craft Yarn Council's key lacks (or means on right-side rows
+/// only), each with its wrong-side stitch so that a flat chart reads them on either side.
+const std::vector<std::pair<char, std::string>> kWrittenKeys = {
+    {'t', "k1 tbl / p1 tbl"}, {'w', "sl1 wyif / sl1 wyib"}, {')', "p2tog / k2tog"}, {'(', "ssp / ssk"}};
+
+/// A cable as the written reader names it: CnB / CnF half over half, else A/B RC or A/B LC.
+std::string cable_abbreviation(const PatternCable& c) {
+  if (c.over == c.under) return "C" + std::to_string(2 * c.over) + (c.order > 0 ? "B" : "F");
+  return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LC";
+}
+
+std::string chart_text(const Pattern& pattern, bool round) {
+  std::vector<std::string> grid(pattern.rows.size());
+  std::set<char> used;
+  for (size_t r = 0; r < pattern.rows.size(); ++r)
+    for (size_t f = 0; f < pattern.rows[r].size(); ++f) {
+      const std::string& type = pattern.rows[r][f];
+      const std::string cells = cells_of_type(type);
+      if (cells.empty())
+        throw Error("", "row " + std::to_string(r + 1) + ", stitch " + std::to_string(f + 1),
+                    "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, slips, the four decreases, Leaf's yo pairs and cables)");
+      grid[r] += cells;
+      used.insert(cells.begin(), cells.end());
+    }
+  // Cables over their cells, a symbol each kind (C, D, E, ...).
+  std::map<std::string, char> cable_symbol;
+  for (const auto& c : pattern.cables) {
+    const std::string name = cable_abbreviation(c);
+    if (!cable_symbol.count(name)) {
+      if (cable_symbol.size() >= 20) throw Error("", "row " + std::to_string(c.row + 1), "more than 20 kinds of cable for one chart");
+      cable_symbol[name] = static_cast<char>('C' + cable_symbol.size());
+    }
+    const int n = c.over + c.under;
+    std::string& row = grid.at(static_cast<size_t>(c.row));
+    if (c.first_loop < 0 || c.first_loop + n > static_cast<int>(row.size()) || row.substr(static_cast<size_t>(c.first_loop), static_cast<size_t>(n)) != std::string(static_cast<size_t>(n), '.'))
+      throw Error("", "row " + std::to_string(c.row + 1) + ", loop " + std::to_string(c.first_loop + 1),
+                  "a cable over stitches other than knits has no chart symbol yet");
+    row.replace(static_cast<size_t>(c.first_loop), static_cast<size_t>(n), static_cast<size_t>(n), cable_symbol[name]);
+  }
+  std::ostringstream out;
+  out << "# name: " << pattern.name << "\n";
+  if (!pattern.note.empty()) out << "# source: " << pattern.note << "\n";
+  out << "# the fabric from the right side, row 1 at the bottom (patterns/FORMAT.md, \"Charts\"); written by skein\n";
+  out << (round ? "format chart round" : "format chart") << "\n";
+  for (const auto& [symbol, meaning] : kWrittenKeys)
+    if (used.count(symbol)) out << "key " << symbol << " " << meaning << "\n";
+  for (const auto& [name, symbol] : cable_symbol) out << "key " << symbol << " " << name << "\n";
+  const int digits = static_cast<int>(std::to_string(grid.size()).size());
+  for (size_t r = grid.size(); r-- > 0;) {
+    for (size_t i = 0; i < grid[r].size(); ++i) out << (i ? " " : "") << grid[r][i];
+    out << "   " << std::string(static_cast<size_t>(digits) - std::to_string(r + 1).size(), ' ') << r + 1 << "\n";
+  }
+  return out.str();
+}
+
+bool same_stitches(const Pattern& a, const Pattern& b) {
+  auto ca = a.cables, cb = b.cables;
+  const auto order = [](const PatternCable& x, const PatternCable& y) { return std::tie(x.row, x.first_loop) < std::tie(y.row, y.first_loop); };
+  std::sort(ca.begin(), ca.end(), order);
+  std::sort(cb.begin(), cb.end(), order);
+  return a.rows == b.rows && ca == cb;
+}
+
+}  // namespace
+
+std::string write_chart_pattern(const Pattern& pattern) {
+  if (pattern.format == PatternFormat::Woven) throw Error("", "chart", "a woven pattern has no knitting chart");
+  // Flat (wrong-side rows read with their wrong-side stitches) where that reads back as the same stitches; else
+  // read from the right side on every row: lace pairs and cables have models on right-side rows only.
+  std::string why;
+  for (const bool round : {false, true}) {
+    const std::string text = chart_text(pattern, round);
+    try {
+      if (same_stitches(parse_chart_pattern(text, "chart"), pattern)) return text;
+      why = "it reads back as other stitches";
+    } catch (const Error& e) {
+      why = e.what();
+    }
+  }
+  throw Error("", "chart", "the chart skein draws for " + pattern.name + " does not read back as the pattern (" + why + ")");
+}
+
+std::string write_written_pattern(const Pattern& pattern) {
+  const std::string chart = write_chart_pattern(pattern);
+  ChartReading reading = read_chart(chart, "chart");
+  // As books write them: runs of plain knits and purls counted (k, k, k → k3).
+  static const std::regex prefix(R"(^((?:Row|Rnd) \d+(?: \([RW]S\))?: ))");
+  for (auto& m : reading.made) {
+    std::smatch head;
+    std::regex_search(m.text, head, prefix);
+    std::vector<std::string> items;
+    std::string rest = m.text.substr(static_cast<size_t>(head.length(0)));
+    rest.pop_back();  // the final "."
+    for (size_t from = 0;;) {
+      const size_t comma = rest.find(", ", from);
+      items.push_back(rest.substr(from, comma - from));
+      if (comma == std::string::npos) break;
+      from = comma + 2;
+    }
+    std::string text = head.str(0);
+    for (size_t i = 0; i < items.size();) {
+      size_t run = 1;
+      while (i + run < items.size() && items[i + run] == items[i] && (items[i] == "k" || items[i] == "p")) ++run;
+      text += (i ? ", " : "") + items[i] + (items[i] == "k" || items[i] == "p" ? std::to_string(run) : "");
+      i += run;
+    }
+    m.text = text + ".";
+  }
+  reading.comments.push_back("# written instructions, by skein (patterns/FORMAT.md)");
+  const std::string out = written_text(reading);
+  if (!same_stitches(parse_written_pattern(out, "written instructions"), pattern))
+    throw Error("", "written instructions", "the instructions skein writes for " + pattern.name + " do not read back as the pattern");
+  return out;
 }
 
 }  // namespace skein::mesh

@@ -21,4 +21,14 @@ bool is_chart_pattern(const std::string& text);
 /// the written-instruction reader refuses in the row the chart makes (placed at the chart's cell).
 Pattern parse_chart_pattern(const std::string& text, const std::string& source);
 
+/// A knit pattern as chart text that parse_chart_pattern reads back as the same stitches: `format chart`
+/// (flat) where its wrong-side rows can be read so, else `format chart round`; keys for cables and for the
+/// symbols the default key lacks. Throws skein::Error naming the row and stitch of a stitch type no chart
+/// symbol stands for yet (increases, twisted tops, ...), and for woven patterns.
+std::string write_chart_pattern(const Pattern& pattern);
+
+/// The same pattern as written instructions ("Row 1 (RS): k2, p2, C4B, p2."), runs of knits and purls
+/// counted, that parse_written_pattern reads back as the same stitches; what write_chart_pattern refuses too.
+std::string write_written_pattern(const Pattern& pattern);
+
 }  // namespace skein::mesh

@@ -769,3 +769,30 @@ TEST(Job, SigtermLeavesACheckpointToResumeFrom) {
   EXPECT_EQ(exit_code(again), 128 + SIGTERM);
   EXPECT_NE(slurp(dir / "resumed.log").find("resuming the yarn from"), std::string::npos) << slurp(dir / "resumed.log");
 }
+
+TEST(Cli, PatternWritesItselfAsAChartAndAsWrittenInstructions) {
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  // No yarn asked: only the chart and the instructions, which read back as the same stitches.
+  auto r = run_skein("pattern " + patterns + "/cable-4.knit --write-chart " + (dir / "c.txt").string() + " --write-instructions " +
+                     (dir / "w.txt").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(slurp(dir / "c.txt").find("key C C4B"), std::string::npos);
+  EXPECT_NE(slurp(dir / "w.txt").find("Row 1 (RS): p2, C4B, p2."), std::string::npos);
+  const auto a = run_skein("pattern " + (dir / "c.txt").string() + " --tile 1x1 -o " + (dir / "a.bcc").string());
+  const auto b = run_skein("pattern " + patterns + "/cable-4.knit --tile 1x1 -o " + (dir / "b.bcc").string());
+  const auto c = run_skein("pattern " + (dir / "w.txt").string() + " --tile 1x1 -o " + (dir / "w.bcc").string());
+  ASSERT_EQ(a.status + b.status + c.status, 0) << a.output << b.output << c.output;
+  EXPECT_EQ(slurp(dir / "a.bcc"), slurp(dir / "b.bcc"));
+  EXPECT_EQ(slurp(dir / "w.bcc"), slurp(dir / "b.bcc"));
+  // A stitch no chart can say is refused naming the file, the row and the stitch, and nothing is written.
+  r = run_skein("pattern " + patterns + "/eyelet-lace.knit --write-chart " + (dir / "e.txt").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("eyelet-lace.knit: row 2, stitch 1: stitch type 'kyk' has no chart symbol yet"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e.txt"));
+  // Yarn outputs still need -o.
+  r = run_skein("pattern " + patterns + "/seed.knit --relax --write-chart " + (dir / "s.txt").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("-o: is required"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.txt"));
+}

@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <numeric>
 #include <string>
 #include <vector>
 
 #include "common/error.hpp"
+#include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/written_pattern.hpp"
 #include "testing.hpp"
@@ -242,4 +244,49 @@ TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
   EXPECT_EQ(none, "p.txt: line 3, column 5: 'c0b': cables of 2, 4 or 6 stitches (half over half) have models");
   const auto width = error("format chart round\n. . . . .\n. / . .\n");
   EXPECT_NE(width.find("(line 3)"), std::string::npos) << width;
+}
+
+TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsThatReadBackAsItsStitches) {
+  // Every bundled knit, written pattern and chart: written out as chart text and as written instructions, each
+  // read back by its own reader gives the same stitches and cables; the rest are refused naming the stitch.
+  int written = 0, refused = 0;
+  for (const char* folder : {"", "/written", "/charts"})
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(SKEIN_PATTERNS_DIR) + folder)) {
+      const auto ext = entry.path().extension();
+      if (!entry.is_regular_file() || ext == ".weave" || ext == ".md") continue;
+      SCOPED_TRACE(entry.path().string());
+      const auto pattern = mesh::read_pattern(entry.path());
+      std::string chart, instructions;
+      try {
+        chart = mesh::write_chart_pattern(pattern);
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.rule()).find("has no chart symbol yet"), std::string::npos) << e.what();
+        EXPECT_NE(e.place().find("row "), std::string::npos) << e.what();
+        EXPECT_NE(error_of([&] { mesh::write_written_pattern(pattern); }), "");
+        ++refused;
+        continue;
+      }
+      instructions = mesh::write_written_pattern(pattern);
+      for (const auto& [text, what] : {std::pair{chart, "chart"}, {instructions, "instructions"}}) {
+        const auto back = mesh::parse_pattern(text, "back.txt");
+        EXPECT_EQ(back.rows, pattern.rows) << what << ":\n" << text;
+        EXPECT_EQ(back.cables.size(), pattern.cables.size()) << what << ":\n" << text;
+        for (const auto& c : pattern.cables) EXPECT_NE(std::find(back.cables.begin(), back.cables.end(), c), back.cables.end()) << what << ":\n" << text;
+        EXPECT_EQ(back.name, pattern.name);
+      }
+      EXPECT_TRUE(mesh::is_chart_pattern(chart));
+      ++written;
+    }
+  EXPECT_GE(written, 30);
+  EXPECT_GT(refused, 0);
+  // As a knitter reads them: a flat chart with its cable key and numbered rows, runs counted in the instructions.
+  const auto cable = bundled("cable-4");
+  EXPECT_NE(mesh::write_chart_pattern(cable).find("format chart\nkey C C4B\n- - . . . . - -   4\n"), std::string::npos) << mesh::write_chart_pattern(cable);
+  EXPECT_NE(mesh::write_written_pattern(cable).find("Row 1 (RS): p2, C4B, p2.\nRow 2 (WS): k2, p4, k2.\n"), std::string::npos)
+      << mesh::write_written_pattern(cable);
+  // Lace pairs are read on right-side rows only: a pattern with one on a wrong-side row is charted in the round.
+  const auto lace = mesh::parse_pattern("format knit\nk ys k\nk k k k\n", "l.knit");  // the top line is row 2
+  EXPECT_NE(mesh::write_chart_pattern(lace).find("format chart round"), std::string::npos);
+  EXPECT_NE(error_of([] { mesh::write_chart_pattern(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave")); }).find("woven"),
+            std::string::npos);
 }
