@@ -107,6 +107,7 @@ json case_row(const SweepCase& c, const std::string& label, int rank, int status
     row["period"] = period == std::string("free_period") ? "free" : "fixed";
     for (const char* key : {"repeat_mm", "repeat_energy", "loop_length_mm", "Kc", "Kw", "rows_apart"}) row[key] = p.value(key, json(nullptr));
     if (p.contains("gauge_per_10cm")) row["stitches_per_10cm"] = p["gauge_per_10cm"]["stitches"], row["rows_per_10cm"] = p["gauge_per_10cm"]["rows"];
+    if (p.contains("against_asked")) row["stitches_against_gauge"] = p["against_asked"]["stitches"];  // the relaxed over the yarn's or given gauge
   }
   return row;
 }
@@ -129,7 +130,8 @@ std::string csv_field(const json& v) {
 }
 
 const std::vector<std::string> kCsvColumns = {"case", "label", "rank", "stopped_by", "converged", "steps", "wall_seconds", "energy", "force_residual",
-                                              "pull_through_events", "repeat_mm", "stitches_per_10cm", "rows_per_10cm", "Kw", "Kc", "loop_length_mm"};
+                                              "pull_through_events", "repeat_mm", "stitches_per_10cm", "stitches_against_gauge", "rows_per_10cm", "Kw", "Kc",
+                                              "loop_length_mm"};
 
 /// sweep.png by gnuplot (scripts/install-deps.sh installs gnuplot-nox): per case, the stitches per 10 cm of a
 /// free period (or one repeat's energy of a fixed one) above, the time each took below, coloured by rank.
