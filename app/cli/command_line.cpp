@@ -363,6 +363,9 @@ int run_command_line(int argc, char** argv) {
   std::string audit_before, audit_after;
   audit->add_option("BEFORE", audit_before, "yarn before (.bcc)")->required();
   audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
+  std::string audit_ids;
+  audit->add_option("--ids", audit_ids, "the stitch ids side file of BEFORE's yarn (skein yarn/relax-yarn/pattern --ids): name each crossing's stitches "
+                                        "(face, row, type)");
   double audit_deviation = 0.1;
   audit->add_option("--deviation", audit_deviation, "the crossing test's polylines stay this close to the curves, × r (edges per segment from its curvature)")
       ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
@@ -983,6 +986,7 @@ int run_command_line(int argc, char** argv) {
       const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);
       if (before.curve_start != after.curve_start || before.closed != after.closed)
         throw Error(audit_after, "", "holds other curves than " + audit_before + " (curve count, point counts or closed flags differ)");
+      const auto ids = audit_ids.empty() ? std::vector<relax::PointId>{} : relax::read_point_ids(audit_ids, before);
       const auto system = relax::make_yarn_system(before);
       Eigen::Matrix3Xd q1(3, system.num_points());
       for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
@@ -1003,11 +1007,32 @@ int run_command_line(int argc, char** argv) {
                 << system.num_points() << "\nlargest control-point move: " << largest << " mm (" << largest / r
                 << " r)\nRMS control-point move: " << rms << " mm (" << rms / r << " r)\n"
                 << "centreline crossings on the straight path between the two states: " << crossings << "\n";
+      // With the ids: a segment's stitch is its first point's, else its second's (a point of no face has none).
+      const auto stitch_of = [&](int segment) -> const relax::PointId* {
+        for (int k : {1, 2})
+          if (const int p = system.segment_points[segment][k]; ids[p].face >= 0) return &ids[p];
+        return nullptr;
+      };
+      const auto describe = [&](int segment) {
+        const relax::PointId* id = ids.empty() ? nullptr : stitch_of(segment);
+        return id ? " [face " + std::to_string(id->face) + ", row " + std::to_string(id->row) + ", " + id->type + "]" : std::string();
+      };
       for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {
         const auto& c = crossing_list[i];
         std::cout << "  segments " << c.segment_a << " (points " << system.segment_points[c.segment_a][1] << "-" << system.segment_points[c.segment_a][2]
-                  << ") and " << c.segment_b << " (points " << system.segment_points[c.segment_b][1] << "-" << system.segment_points[c.segment_b][2]
-                  << ") near (" << c.where.x() << ", " << c.where.y() << ", " << c.where.z() << ")\n";
+                  << ")" << describe(c.segment_a) << " and " << c.segment_b << " (points " << system.segment_points[c.segment_b][1] << "-"
+                  << system.segment_points[c.segment_b][2] << ")" << describe(c.segment_b) << " near (" << c.where.x() << ", " << c.where.y() << ", "
+                  << c.where.z() << ")\n";
+      }
+      if (!ids.empty()) {
+        std::set<int> faces, rows;
+        for (const auto& c : crossing_list)
+          for (int segment : {c.segment_a, c.segment_b})
+            if (const auto* id = stitch_of(segment)) faces.insert(id->face), rows.insert(id->row);
+        std::cout << "stitches in the crossings: " << faces.size() << " (in " << rows.size() << " rows)";
+        int shown = 0;
+        for (int f : faces) std::cout << (shown++ == 0 ? ": faces " : ", ") << f;
+        std::cout << "\n";
       }
       long changed = 0;
       std::set<std::pair<int, int>> keys;

@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/input_file.hpp"
 #include "json_keys.hpp"
 #include "stitchmesh/fabric.hpp"
 #include "stitchmesh/pattern.hpp"
@@ -265,6 +266,7 @@ Sweep parse_sweep(const std::string& text, const fs::path& file) {
 }
 
 Sweep read_sweep(const fs::path& file) {
+  check_input_file(file, 16u << 20);
   std::ifstream in(file);
   if (!in) throw Error(file.string(), "", "cannot be read");
   std::stringstream text;

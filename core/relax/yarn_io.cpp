@@ -1,6 +1,7 @@
 #include "relax/yarn_io.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "common/atomic_file.hpp"
+#include "common/input_file.hpp"
 #include "common/error.hpp"
 #include "relax/segment_distance.hpp"
 
@@ -222,6 +224,54 @@ void write_point_ids(const YarnCurves& yarn, const mesh::StitchMesh& mesh, const
         out << p << ',' << c << ',' << f << ',' << (f >= 0 ? mesh.faces[f].row : -1) << ',' << (f >= 0 ? mesh.faces[f].type : "") << '\n';
       }
   });
+}
+
+std::vector<PointId> read_point_ids(const std::filesystem::path& path, const YarnCurves& yarn) {
+  check_input_file(path, (yarn.points.size() + 1) * 4200);  // the header and one line of at most 4096 a point
+  std::ifstream in(path);
+  if (!in) throw Error(path.string(), "", "cannot be read");
+  const auto fail = [&](int line, const std::string& rule) { throw Error(path.string(), "line " + std::to_string(line), rule); };
+  const int n = static_cast<int>(yarn.points.size());
+  std::vector<PointId> ids;
+  std::string line;
+  int line_no = 0;
+  const auto next = [&] {
+    if (!std::getline(in, line)) return false;
+    ++line_no;
+    if (line.size() > 4096) fail(line_no, "is longer than 4096 characters");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next() || line != "point,curve,face,row,type") fail(1, "expected the header 'point,curve,face,row,type'");
+  while (next()) {
+    if (line.empty()) continue;
+    std::vector<std::string> fields;
+    for (size_t from = 0;;) {
+      const size_t comma = line.find(',', from);
+      fields.push_back(line.substr(from, comma - from));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    if (fields.size() != 5) fail(line_no, "expected 5 fields (point,curve,face,row,type), found " + std::to_string(fields.size()));
+    long v[4];
+    for (int k = 0; k < 4; ++k) {
+      char* end = nullptr;
+      errno = 0;
+      v[k] = std::strtol(fields[k].c_str(), &end, 10);
+      if (fields[k].empty() || *end != '\0' || errno != 0 || v[k] < -1 || v[k] > 1L << 31)
+        fail(line_no, "field " + std::to_string(k + 1) + " is not a whole number of -1 or more: '" + fields[k] + "'");
+    }
+    const int point = static_cast<int>(ids.size());
+    if (point >= n) fail(line_no, "names more control points than the yarn's " + std::to_string(n));
+    if (v[0] != point) fail(line_no, "names point " + std::to_string(v[0]) + " where point " + std::to_string(point) + " comes");
+    if (v[1] != yarn.yarn_of(point))
+      fail(line_no, "puts point " + std::to_string(point) + " on curve " + std::to_string(v[1]) + "; the yarn has it on curve " + std::to_string(yarn.yarn_of(point)));
+    if ((v[2] < 0) != (v[3] < 0)) fail(line_no, "a face needs its row, and a row its face (-1,-1 for a point of no face)");
+    ids.push_back({static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]), fields[4]});
+  }
+  if (static_cast<int>(ids.size()) != n)
+    throw Error(path.string(), "", "names " + std::to_string(ids.size()) + " control points; the yarn has " + std::to_string(n));
+  return ids;
 }
 
 YarnStats yarn_stats(const YarnCurves& yarn) {

@@ -38,6 +38,17 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
 /// Throws skein::Error when the yarn names a face `mesh` does not have.
 void write_point_ids(const YarnCurves& yarn, const mesh::StitchMesh& mesh, const std::filesystem::path& path);
 
+/// One control point's stitch, as a stitch ids file gives it.
+struct PointId {
+  int curve = 0, face = -1, row = -1;
+  std::string type;
+};
+/// Reads a stitch ids file written for `yarn` (write_point_ids): one line per control point, in order, each on
+/// the curve the yarn has it on. Throws skein::Error naming the file, the line and the rule broken (the header,
+/// the field count, numbers, a point out of order, a curve that is not the point's, a face with no row or a
+/// row with no face, more or fewer lines than the yarn has points).
+std::vector<PointId> read_point_ids(const std::filesystem::path& path, const YarnCurves& yarn);
+
 /// Rings of `sides` points of the given radius around a sampled curve, in a parallel-transported frame so
 /// that the tube does not twist: one ring per sample.
 std::vector<std::vector<Eigen::Vector3d>> tube_rings(const std::vector<Eigen::Vector3d>& samples, double radius, int sides);

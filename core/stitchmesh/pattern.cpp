@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/input_file.hpp"
 #include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
@@ -192,6 +193,7 @@ void check_stacking(const Pattern& p, const std::vector<int>& row_line, const st
 }
 
 Pattern read_pattern(const std::filesystem::path& file) {
+  check_input_file(file, 16u << 20);  // a pattern is text: 16 MB is far past any
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(file.string(), "", "cannot be opened for reading");
   std::ostringstream text;

@@ -10,6 +10,7 @@
 #include "garments.hpp"
 #include "relax/yarn_io.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "stitchmesh/pattern.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
 #include "testing.hpp"
@@ -156,4 +157,48 @@ TEST(YarnIo, StatsCountAndMeasure) {
   EXPECT_EQ(s.control_points, 8);
   EXPECT_DOUBLE_EQ(s.total_length, 10 + 10 + 4);
   EXPECT_NEAR(s.min_segment_distance, 1.0, 1e-12);  // the square's opposite sides
+}
+
+TEST(YarnIo, StitchIdsReadBackAndBrokenOnesAreRefusedNamingTheLine) {
+  ScratchDir dir;
+  const auto m = models::tube();
+  const auto l = mesh::auto_label(m, mesh::default_start_edge(m));
+  const auto stitch = mesh::tessellate(m, l, mesh::initial_values(m, l, {12, 10}));
+  const auto yarn = mesh::emit_yarn(stitch, mesh::StitchLibrary::bundled(), {});
+  const auto file = dir / "ids.csv";
+  relax::write_point_ids(yarn, stitch, file);
+  const auto ids = relax::read_point_ids(file, yarn);
+  ASSERT_EQ(ids.size(), yarn.points.size());
+  for (size_t p = 0; p < ids.size(); p += 97) {
+    EXPECT_EQ(ids[p].curve, yarn.yarn_of(static_cast<int>(p)));
+    EXPECT_EQ(ids[p].face, yarn.point_face[p]);
+    if (ids[p].face >= 0) {
+      EXPECT_EQ(ids[p].row, stitch.faces[ids[p].face].row);
+      EXPECT_EQ(ids[p].type, stitch.faces[ids[p].face].type);
+    }
+  }
+  // Broken files: each names the file, the line and the rule.
+  const std::string good = bytes(file);
+  const std::string first = good.substr(0, good.find('\n', good.find('\n') + 1) + 1);  // the header and point 0
+  const std::string rest = good.substr(first.size());
+  const std::string curve0 = std::to_string(yarn.yarn_of(0)), curve1 = std::to_string(yarn.yarn_of(1));
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {"point,face\n" + rest, "line 1: expected the header"},
+           {first + "1," + curve1 + ",3,0\n" + rest.substr(rest.find('\n') + 1), "line 3: expected 5 fields"},
+           {first + "1," + curve1 + ",x,0,k\n" + rest.substr(rest.find('\n') + 1), "line 3: field 3 is not a whole number"},
+           {first + "7," + curve1 + ",3,0,k\n" + rest.substr(rest.find('\n') + 1), "line 3: names point 7 where point 1 comes"},
+           {first + "1," + std::to_string(yarn.curves()) + ",3,0,k\n" + rest.substr(rest.find('\n') + 1), "line 3: puts point 1 on curve"},
+           {first + "1," + curve1 + ",3,-1,k\n" + rest.substr(rest.find('\n') + 1), "line 3: a face needs its row"},
+           {first, "names 1 control points; the yarn has"},
+           {good + std::to_string(yarn.points.size()) + "," + curve0 + ",-1,-1,\n", "names more control points than the yarn's"},
+       }) {
+    const auto broken = dir.write("broken.csv", text);
+    const std::string e = error_of([&] { relax::read_point_ids(broken, yarn); });
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+    EXPECT_NE(e.find("broken.csv"), std::string::npos) << e;
+  }
+  EXPECT_NE(error_of([&] { relax::read_point_ids(dir / "missing.csv", yarn); }).find("missing.csv: does not exist"), std::string::npos);
+  // Not a file to read whole: a device that never ends, a folder (patterns too).
+  EXPECT_NE(error_of([&] { relax::read_point_ids("/dev/zero", yarn); }).find("/dev/zero: is not a regular file"), std::string::npos);
+  EXPECT_NE(error_of([&] { mesh::read_pattern(dir.path()); }).find("is not a regular file"), std::string::npos);
 }
