@@ -8,6 +8,7 @@ find_package(spdlog REQUIRED)
 find_package(OpenMP REQUIRED)
 find_package(TBB REQUIRED)
 find_package(PNG REQUIRED)
+find_package(TinyGLTF REQUIRED)              # libtinygltf-dev 2.7: glTF 2.0 tube meshes, target TinyGLTF::TinyGLTF
 find_package(MPI REQUIRED COMPONENTS CXX)  # Open MPI 4.1 (libopenmpi-dev): skein-mpi, target MPI::MPI_CXX
 
 # OpenSubdiv 3.5 (libosd-dev): its CMake config points at a missing libosdCPU.a, so find it by hand.

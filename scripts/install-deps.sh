@@ -9,6 +9,7 @@ packages=(
   clang libclang-rt-14-dev libomp-dev
   gnuplot-nox
   libopenmpi-dev openmpi-bin
+  libtinygltf-dev
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

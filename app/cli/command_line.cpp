@@ -133,7 +133,8 @@ int run_command_line(int argc, char** argv) {
   double yarn_radius = 0;
   yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
   yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
-  yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh OBJ for any renderer");
+  yarn_cmd->add_option("--tubes", yarn_tubes, "also write a tube mesh with normals for any renderer: OBJ, or glTF 2.0 when it ends in .glb or .gltf (in metres, "
+                                              "glTF's unit)");
   std::string yarn_ids;
   yarn_cmd->add_option("--ids", yarn_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks");
   std::string yarn_units = "mm";
@@ -639,7 +640,9 @@ int run_command_line(int argc, char** argv) {
       write_yarn(scaled, yarn_out, false, yarn_units);
       spdlog::info("wrote {}", yarn_out);
       if (!yarn_tubes.empty()) {
-        relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
+        const auto ext = fs::path(yarn_tubes).extension();
+        if (ext == ".glb" || ext == ".gltf") relax::write_tube_gltf(yarn, yarn_tubes);  // metres whatever --units says
+        else relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
         spdlog::info("wrote {}", yarn_tubes);
       }
       if (!yarn_ids.empty()) {

@@ -1,6 +1,7 @@
 #include "relax/yarn_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <unordered_map>
 
 #include <Eigen/Geometry>
+#include <tiny_gltf.h>
 
 #include "common/atomic_file.hpp"
 #include "common/input_file.hpp"
@@ -177,37 +179,131 @@ std::vector<std::vector<Eigen::Vector3d>> tube_rings(const std::vector<Eigen::Ve
   return rings;
 }
 
+namespace {
+/// A yarn's tubes, one block per curve: the rings' points with a normal each (out from the centreline, so
+/// that renderers shade the tubes smooth), and quads between consecutive rings (indices within the block).
+struct TubeBlock {
+  std::vector<Eigen::Vector3d> positions, normals;
+  std::vector<std::array<int, 4>> quads;
+};
+std::vector<TubeBlock> tube_blocks(const YarnCurves& yarn, const TubeOptions& options) {
+  std::vector<TubeBlock> blocks;
+  for (const auto& pts : sample_curves(yarn, std::max(1, options.samples_per_segment))) {
+    if (pts.size() < 2) continue;
+    TubeBlock b;
+    const auto rings = tube_rings(pts, yarn.radius, options.sides);
+    for (size_t i = 0; i < rings.size(); ++i)
+      for (const auto& p : rings[i]) b.positions.push_back(p), b.normals.push_back((p - pts[i]).normalized());
+    for (int i = 0; i + 1 < static_cast<int>(pts.size()); ++i)
+      for (int k = 0; k < options.sides; ++k) {
+        const int a = i * options.sides + k, c = i * options.sides + (k + 1) % options.sides;
+        b.quads.push_back({a, c, c + options.sides, a + options.sides});
+      }
+    blocks.push_back(std::move(b));
+  }
+  return blocks;
+}
+}  // namespace
+
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
-  const auto curves = sample_curves(yarn, std::max(1, options.samples_per_segment));
+  const auto blocks = tube_blocks(yarn, options);
   write_file_atomically(path, [&](std::ostream& out) {
     out << "# skein yarn tubes: radius " << yarn.radius << " " << options.unit << ", " << options.sides << " sides\n";
     char buf[96];
     long base = 1;
-    for (size_t c = 0; c < curves.size(); ++c) {
-      const auto& pts = curves[c];
-      if (pts.size() < 2) continue;
+    for (size_t c = 0; c < blocks.size(); ++c) {
       out << "o yarn" << c << '\n';
-      const auto rings = tube_rings(pts, yarn.radius, options.sides);
-      for (size_t i = 0; i < rings.size(); ++i)
-        for (const auto& p : rings[i]) {
-          std::snprintf(buf, sizeof buf, "v %.6g %.6g %.6g\n", p.x(), p.y(), p.z());
-          out << buf;
-        }
-      // A normal per vertex, out from the centreline, so that renderers shade the tubes smooth.
-      for (size_t i = 0; i < rings.size(); ++i)
-        for (const auto& p : rings[i]) {
-          const Eigen::Vector3d n = (p - pts[i]).normalized();
-          std::snprintf(buf, sizeof buf, "vn %.5f %.5f %.5f\n", n.x(), n.y(), n.z());
-          out << buf;
-        }
-      const auto corner = [&](long v) { return std::to_string(v) + "//" + std::to_string(v); };
-      for (size_t i = 0; i + 1 < pts.size(); ++i)
-        for (int k = 0; k < options.sides; ++k) {
-          const long a = base + static_cast<long>(i) * options.sides + k, b = base + static_cast<long>(i) * options.sides + (k + 1) % options.sides;
-          out << "f " << corner(a) << ' ' << corner(b) << ' ' << corner(b + options.sides) << ' ' << corner(a + options.sides) << '\n';
-        }
-      base += static_cast<long>(pts.size()) * options.sides;
+      for (const auto& p : blocks[c].positions) {
+        std::snprintf(buf, sizeof buf, "v %.6g %.6g %.6g\n", p.x(), p.y(), p.z());
+        out << buf;
+      }
+      for (const auto& n : blocks[c].normals) {
+        std::snprintf(buf, sizeof buf, "vn %.5f %.5f %.5f\n", n.x(), n.y(), n.z());
+        out << buf;
+      }
+      const auto corner = [&](int v) { return std::to_string(base + v) + "//" + std::to_string(base + v); };
+      for (const auto& q : blocks[c].quads) out << "f " << corner(q[0]) << ' ' << corner(q[1]) << ' ' << corner(q[2]) << ' ' << corner(q[3]) << '\n';
+      base += static_cast<long>(blocks[c].positions.size());
     }
+  });
+}
+
+void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
+  const auto blocks = tube_blocks(yarn, options);
+  // One primitive of triangles: positions in metres (glTF's unit; the yarn is in mm), normals, 32-bit indices.
+  std::vector<float> positions, normals;
+  std::vector<std::uint32_t> indices;
+  float low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (const auto& b : blocks) {
+    const auto base = static_cast<std::uint32_t>(positions.size() / 3);
+    for (size_t i = 0; i < b.positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const float x = static_cast<float>(1e-3 * b.positions[i][k]);
+        positions.push_back(x), normals.push_back(static_cast<float>(b.normals[i][k]));
+        low[k] = std::min(low[k], x), high[k] = std::max(high[k], x);
+      }
+    for (const auto& q : b.quads)
+      for (int v : {q[0], q[1], q[2], q[0], q[2], q[3]}) indices.push_back(base + static_cast<std::uint32_t>(v));
+  }
+  if (positions.empty()) throw Error(path.string(), "", "the yarn has no curve of two or more points to make a tube of");
+  if (positions.size() / 3 > 0xffffffffull) throw Error(path.string(), "", "more tube vertices than 32-bit indices reach");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "skein";
+  tinygltf::Buffer buffer;
+  const auto append = [&](const void* data, size_t bytes) {
+    const size_t offset = buffer.data.size();
+    buffer.data.resize(offset + bytes);
+    std::memcpy(buffer.data.data() + offset, data, bytes);
+    return offset;
+  };
+  const auto view = [&](const void* data, size_t bytes, int target) {
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = append(data, bytes);
+    v.byteLength = bytes;
+    v.target = target;
+    model.bufferViews.push_back(v);
+    return static_cast<int>(model.bufferViews.size()) - 1;
+  };
+  const auto accessor = [&](int buffer_view, int component, size_t count, int type) {
+    tinygltf::Accessor a;
+    a.bufferView = buffer_view;
+    a.componentType = component;
+    a.count = count;
+    a.type = type;
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size()) - 1;
+  };
+  const int pos = accessor(view(positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                           positions.size() / 3, TINYGLTF_TYPE_VEC3);
+  model.accessors[pos].minValues = {low[0], low[1], low[2]};
+  model.accessors[pos].maxValues = {high[0], high[1], high[2]};
+  const int nrm = accessor(view(normals.data(), normals.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                           normals.size() / 3, TINYGLTF_TYPE_VEC3);
+  const int idx = accessor(view(indices.data(), indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
+  model.buffers.push_back(std::move(buffer));
+  tinygltf::Primitive primitive;
+  primitive.attributes["POSITION"] = pos;
+  primitive.attributes["NORMAL"] = nrm;
+  primitive.indices = idx;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Mesh mesh;
+  mesh.name = "yarn";
+  mesh.primitives.push_back(primitive);
+  model.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "skein yarn, radius " + std::to_string(yarn.radius) + " mm";
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  const bool binary = path.extension() == ".glb";
+  write_file_atomically(path, [&](std::ostream& out) {
+    if (!tinygltf::TinyGLTF().WriteGltfSceneToStream(&model, out, !binary, binary)) throw Error(path.string(), "", "tinygltf could not write it");
   });
 }
 

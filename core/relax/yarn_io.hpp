@@ -31,6 +31,9 @@ struct TubeOptions {
   std::string unit = "mm";      ///< what the coordinates are in, for the header comment
 };
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
+/// The same tubes as glTF 2.0 (tinygltf): one mesh of triangles with normals, positions in metres (glTF's unit;
+/// `yarn` in mm, options.unit ignored); binary (.glb) when `path` ends in .glb, else JSON with the buffer inside.
+void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options = {});
 
 /// The stitch ids of a yarn's control points (issue 27), as CSV with a header: `point,curve,face,row,type` per
 /// control point, numbered as the .bcc or OBJ written from the same yarn numbers them; `face` is the stitch-mesh

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <tiny_gltf.h>
+
 #include "common/error.hpp"
 #include "garments.hpp"
 #include "relax/yarn_io.hpp"
@@ -201,4 +203,42 @@ TEST(YarnIo, StitchIdsReadBackAndBrokenOnesAreRefusedNamingTheLine) {
   // Not a file to read whole: a device that never ends, a folder (patterns too).
   EXPECT_NE(error_of([&] { relax::read_point_ids("/dev/zero", yarn); }).find("/dev/zero: is not a regular file"), std::string::npos);
   EXPECT_NE(error_of([&] { mesh::read_pattern(dir.path()); }).find("is not a regular file"), std::string::npos);
+}
+
+TEST(YarnIo, GltfTubesReadBackAsTheObjTubesInMetres) {
+  ScratchDir dir;
+  const auto y = tube_yarn();
+  relax::write_tube_obj(y, dir / "t.obj", {6, 2});
+  const auto obj = mesh::load_mesh(dir / "t.obj");
+  for (const char* name : {"t.glb", "t.gltf"}) {
+    SCOPED_TRACE(name);
+    relax::write_tube_gltf(y, dir / name, {6, 2});
+    // tinygltf reads it back: one mesh, a primitive of triangles with positions, normals and indices.
+    tinygltf::Model model;
+    std::string error, warning;
+    tinygltf::TinyGLTF loader;
+    const bool ok = std::string(name).ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &error, &warning, (dir / name).string())
+                                                        : loader.LoadASCIIFromFile(&model, &error, &warning, (dir / name).string());
+    ASSERT_TRUE(ok) << error;
+    ASSERT_EQ(model.meshes.size(), 1u);
+    const auto& primitive = model.meshes[0].primitives.at(0);
+    EXPECT_EQ(primitive.mode, TINYGLTF_MODE_TRIANGLES);
+    const auto& positions = model.accessors[primitive.attributes.at("POSITION")];
+    const auto& normals = model.accessors[primitive.attributes.at("NORMAL")];
+    const auto& indices = model.accessors[primitive.indices];
+    // The OBJ's vertices, and two triangles for each of its quads (assimp welds nothing here: one ring a sample).
+    EXPECT_EQ(positions.count, normals.count);
+    EXPECT_EQ(static_cast<int>(indices.count), 6 * obj.num_faces());
+    // In metres: the bounding box is the yarn's in mm over 1000, widened by the tube's radius.
+    double lo = 1e9, hi = -1e9;
+    for (const auto& p : y.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+    EXPECT_NEAR(positions.minValues[0], 1e-3 * (lo - y.radius), 2e-3 * y.radius);
+    EXPECT_NEAR(positions.maxValues[0], 1e-3 * (hi + y.radius), 2e-3 * y.radius);
+    // Unit normals, as written.
+    const auto& view = model.bufferViews[normals.bufferView];
+    const float* n = reinterpret_cast<const float*>(model.buffers[view.buffer].data.data() + view.byteOffset + normals.byteOffset);
+    for (size_t i = 0; i < normals.count; i += 101) EXPECT_NEAR(n[3 * i] * n[3 * i] + n[3 * i + 1] * n[3 * i + 1] + n[3 * i + 2] * n[3 * i + 2], 1, 1e-5);
+    // And assimp, as any tool's importer, reads the same triangles.
+    EXPECT_EQ(mesh::load_mesh(dir / name).num_faces(), 2 * obj.num_faces());
+  }
 }
