@@ -882,8 +882,10 @@ int run_command_line(int argc, char** argv) {
       relax::ShapeTargets targets;
       json pat_extra = {{"pattern", pattern.name}};
       const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
-      // Leaf §6.2: the yarn is made and relaxed at gamma r, and the result scaled back by 1/gamma.
-      const double sim_radius = (pat_relax ? pat_gamma : 1.0) * radius;
+      // Leaf §6.2: the yarn is made and relaxed at gamma r, and the result scaled back by 1/gamma. A yarn weight's
+      // yarn is relaxed at its compressed contact radius (kYarnCompression) and written at its full one.
+      const bool compressed = pat_relax && !pat_fabric.yarn.empty() && pattern.format != mesh::PatternFormat::Woven;
+      const double sim_radius = (pat_relax ? pat_gamma : 1.0) * (compressed ? mesh::kYarnCompression : 1.0) * radius;
       const bool preview = !pat_preview.empty() || !pat_preview_png.empty();
       if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
       if (!pat_preview.empty()) check_writable(pat_preview);
@@ -935,7 +937,24 @@ int run_command_line(int argc, char** argv) {
         pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
         pat_options.validate();
         pat_extra["gamma"] = pat_gamma;
-        auto system = relax::make_yarn_system(yarn, pat_take_up, parse_take_up("--take-up-stitch", pat_take_up_stitch), pat_options.sampling);
+        const auto take_up_by_type = parse_take_up("--take-up-stitch", pat_take_up_stitch);
+        auto system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
+        if (compressed) {
+          // The yarn weight's fabric: contact at the compressed radius and, unless --take-up says otherwise, the
+          // yarn of the periodic patch cut (or let out) to Munden's loop length for the gauge (docs/yarn.md).
+          pat_extra["fabric"]["contact_radius_mm"] = sim_radius / pat_gamma;
+          if (!targets.periodic.empty() && pat->count("--take-up") == 0 && pat_extra["fabric"].contains("munden_loop_length_mm")) {
+            const double loop = patch_loop_length(system, targets.periodic, {pattern.width(), pattern.height()}) / pat_gamma;
+            pat_take_up = pat_extra["fabric"]["munden_loop_length_mm"].get<double>() / loop;
+            if (!(pat_take_up > 0.1 && pat_take_up < 2))
+              throw Error(pat_in, "--yarn " + pat_fabric.yarn, "the take-up to Munden's loop length would be " + std::to_string(pat_take_up) + "; give --take-up");
+            system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
+            pat_extra["fabric"]["take_up_to_munden"] = pat_take_up;
+            spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f} to Munden's loop length {:.2f} mm", pat_fabric.yarn,
+                         sim_radius / pat_gamma, mesh::kYarnCompression, radius, pat_take_up,
+                         pat_extra["fabric"]["munden_loop_length_mm"].get<double>());
+          }
+        }
         if (!pat_period.empty()) {
           double sx = 0, sy = 0;
           char tail = 0;
@@ -952,7 +971,7 @@ int run_command_line(int argc, char** argv) {
         const json report = relax_and_write(yarn, system, targets, pat_options, state,
                                             {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
                                              !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
-                                             {pattern.width(), pattern.height()}});
+                                             compressed ? radius : 0.0, {pattern.width(), pattern.height()}});
         if (preview && report.at("stopped_by") != "interrupted") {
           // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
           const auto tiled = pattern.format == mesh::PatternFormat::Woven
@@ -960,7 +979,7 @@ int run_command_line(int argc, char** argv) {
                                  : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
           const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
-          out.radius /= pat_gamma;
+          out.radius = compressed ? radius : out.radius / pat_gamma;
           if (!pat_preview.empty()) write_yarn(out, pat_preview);
           if (!pat_preview_png.empty()) render_yarn_tubes(out, pat_preview_png, color, pat_views, pat_panel);
           spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",

@@ -195,6 +195,16 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
   return out;
 }
 
+double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat) {
+  // The yarn of one repeat: the rest lengths of the segments that start at a real point.
+  std::vector<char> copy(system.num_points(), 0);
+  for (int v : periodic.virtual_points) copy[v] = 1;
+  double yarn = 0;
+  for (int s = 0; s < system.num_segments(); ++s)
+    if (!copy[system.segment_points[s][1]]) yarn += system.rest_length[s];
+  return yarn / (repeat[0] * repeat[1]);
+}
+
 Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given) {
   Fabric out;
   if (choice.yarn.empty() && choice.gauge.empty()) return out;
@@ -300,7 +310,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
     if (!isatty(fileno(stderr)) && s.step % 500 == 0) spdlog::info("{}", text);
   });
   auto yarn_out_curves = relax::with_points(yarn, state.points * run.scale);
-  yarn_out_curves.radius *= run.scale;
+  yarn_out_curves.radius = run.radius_out > 0 ? run.radius_out : yarn_out_curves.radius * run.scale;
   const bool final = report.stopped_by != "interrupted";
   if (final) write_yarn(yarn_out_curves, run.output);
   spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events{}",
@@ -346,14 +356,8 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
                  {"repeat_energy", report.repeat_energy}};
     if (run.repeat[0] > 0 && run.repeat[1] > 0) {
       free["gauge_per_10cm"] = {{"stitches", 100.0 * run.repeat[0] / lx}, {"rows", 100.0 * run.repeat[1] / ly}};
-      // The yarn of one repeat: the rest lengths of the segments that start at a real point, per stitch the loop
-      // length l; Munden's dimensional constants Kc = courses per length × l and Kw = wales per length × l.
-      std::vector<char> copy(system.num_points(), 0);
-      for (int v : targets.periodic.virtual_points) copy[v] = 1;
-      double yarn = 0;
-      for (int s = 0; s < system.num_segments(); ++s)
-        if (!copy[system.segment_points[s][1]]) yarn += system.rest_length[s];
-      const double loop = yarn * run.scale / (run.repeat[0] * run.repeat[1]);
+      // Munden's dimensional constants Kc = courses per length × l and Kw = wales per length × l.
+      const double loop = patch_loop_length(system, targets.periodic, run.repeat) * run.scale;
       free["loop_length_mm"] = loop;
       free["Kc"] = run.repeat[1] / ly * loop;
       free["Kw"] = run.repeat[0] / lx * loop;

@@ -137,9 +137,14 @@ struct YarnRunOutputs {
   int panel = 900;              ///< picture: pixels per view
   render::YarnColor color = render::YarnColor::StitchType;
   double scale = 1;             ///< the relaxed yarn is written scaled by this (1/gamma, Leaf §6.2)
+  double radius_out = 0;        ///< the written yarn's radius where it is not the relaxed one's (a compressed contact); 0: that one
   /// A periodic patch's repeat in stitches (wales x courses; wovens: warps x wefts), for the gauge of a free period.
   std::array<int, 2> repeat = {0, 0};
 };
+
+/// A periodic patch's yarn per stitch of its repeat (wales x courses): the rest lengths of the segments that start
+/// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
+double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat);
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
 /// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes

@@ -32,6 +32,11 @@ const YarnWeight& find_yarn_weight(const std::string& name);
 inline constexpr double kLoopShapeFactor = 1.3;
 /// Munden's Kw, wales per length x loop length, of dry-relaxed plain knit (3.8 to 4.2 from dry to fully relaxed).
 inline constexpr double kMundenKw = 4.0;
+/// A yarn's contact diameter in knitted fabric as a share of its wraps-per-inch diameter: yarn flattens and
+/// compresses where it crosses yarn, which round tubes cannot. Fitted on dk stockinette at its standard gauge
+/// with Munden's loop length (21.4 of 22.5 stitches in 10 cm); fingering and worsted then give 0.93 and 0.98 of
+/// theirs (docs/BENCHMARKS.md, "At the yarns' own gauges").
+inline constexpr double kYarnCompression = 0.46;
 
 /// A stockinette gauge: stitches and rows in 10 cm.
 struct Gauge {

@@ -821,3 +821,27 @@ TEST(Cli, AuditWithTheStitchIdsNamesTheStitchesOfEachCrossing) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("t.csv"), std::string::npos) << r.output;
 }
+
+TEST(Cli, AYarnWeightRelaxesToItsGaugeAtItsCompressedContactAndMundensLoopLength) {
+  // Issue 24: relaxed as a yarn weight's fabric (contact at kYarnCompression of its diameter, the yarn cut to
+  // Munden's loop length), stockinette's free width gives back the weight's standard gauge within 10 %; the yarn
+  // is written at its full radius. Before the compression, dk came out at 0.48 of its gauge.
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  auto r = run_skein("pattern " + patterns + "/stockinette.knit --yarn dk --relax --free-period --no-audit -o " + (dir / "d.bcc").string() +
+                     " --report " + (dir / "d.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "d.json"));
+  EXPECT_NEAR(report["free_period"]["against_asked"]["stitches"].get<double>(), 1.0, 0.1) << report["free_period"].dump();
+  EXPECT_NEAR(report["free_period"]["against_asked"]["loop_length"].get<double>(), 1.0, 1e-6);
+  EXPECT_TRUE(report["converged"].get<bool>());
+  EXPECT_NEAR(report["fabric"]["contact_radius_mm"].get<double>(), 0.46 * 25.4 / 13 / 2, 1e-6);
+  EXPECT_NEAR(skein::relax::read_bcc(dir / "d.bcc").radius, 25.4 / 13 / 2, 1e-6);
+  // A take-up given is kept: the yarn is not cut to Munden's length then.
+  r = run_skein("pattern " + patterns + "/stockinette.knit --yarn dk --take-up 1 --relax --free-period --no-audit --max-steps 50 -o " +
+                (dir / "t.bcc").string() + " --report " + (dir / "t.json").string());
+  ASSERT_LE(r.status, 1) << r.output;
+  const auto kept = nlohmann::json::parse(slurp(dir / "t.json"));
+  EXPECT_FALSE(kept["fabric"].contains("take_up_to_munden"));
+  EXPECT_GT(kept["free_period"]["against_asked"]["loop_length"].get<double>(), 1.05);
+}
