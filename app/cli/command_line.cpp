@@ -841,10 +841,10 @@ int run_command_line(int argc, char** argv) {
           render::write_png(*chart, pat_chart_png);
           spdlog::info("wrote {}", pat_chart_png);
         }
-        for (const auto& [path, text] : {std::pair{pat_write_chart, chart_text}, {pat_write_instructions, instructions}}) {
-          if (path.empty()) continue;
-          write_file_atomically(path, [&](std::ostream& out) { out << text; });
-          spdlog::info("wrote {}", path);
+        for (const auto& written : {std::pair{pat_write_chart, chart_text}, {pat_write_instructions, instructions}}) {
+          if (written.first.empty()) continue;
+          write_file_atomically(written.first, [&](std::ostream& out) { out << written.second; });  // (clang 14: no structured binding in a lambda)
+          spdlog::info("wrote {}", written.first);
         }
       };
       if (pat_out.empty()) {
