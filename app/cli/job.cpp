@@ -106,14 +106,7 @@ JobEdit job_edit(const Keys& k) {
 }  // namespace
 
 Job parse_job(const std::string& text, const fs::path& file) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(file.string(), "byte " + std::to_string(e.byte), std::string("is not valid JSON: ") + e.what());
-  } catch (const json::exception& e) {  // numbers too large for a double, found by fuzzing
-    throw Error(file.string(), "", std::string("is not valid JSON: ") + e.what());
-  }
+  const json j = parse_user_json(text, file);
   const Keys k(j, "", file);
   k.only({"name", "mesh", "labels", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
   Job job;

@@ -16,6 +16,18 @@
 
 namespace skein::cli {
 
+/// Parses the text of a JSON file a user wrote; a syntax error names its byte, a number too large for a double
+/// (found by fuzzing) is refused too, both as an Error naming the file.
+inline nlohmann::json parse_user_json(const std::string& text, const std::filesystem::path& file) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(file.string(), "byte " + std::to_string(e.byte), std::string("is not valid JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(file.string(), "", std::string("is not valid JSON: ") + e.what());
+  }
+}
+
 /// Reads the members of one JSON object of a job or sweep file, naming "key.sub" and what was expected in its errors.
 class Keys {
   using json = nlohmann::json;

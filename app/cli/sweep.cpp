@@ -204,12 +204,7 @@ std::string SweepCase::label() const {
 }
 
 Sweep parse_sweep(const std::string& text, const fs::path& file) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(file.string(), "byte " + std::to_string(e.byte), std::string("not JSON: ") + e.what());
-  }
+  const json j = parse_user_json(text, file);
   const Keys k(j, "", file);
   k.only({"name", "patterns", "yarns", "gauges", "gamma", "take_up", "relax", "threads", "pictures", "output"});
   Sweep s;

@@ -53,7 +53,7 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "take_up": [0]})", "key 'take_up': expected numbers in [0.1, 2]"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
-           {R"({"patterns": [")" + stock + R"(", )", "not JSON"},
+           {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
        }) {
     const auto file = dir.write("bad.json", text);
     const auto out = dir / "out";
