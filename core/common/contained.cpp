@@ -17,6 +17,10 @@
 
 #include "common/error.hpp"
 
+// Defined only by a sanitizer runtime (the fuzz build), where libFuzzer registers a death callback that writes
+// the input as a crash: a dying child must not run it, for its death is the parent's to report as an Error.
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
+
 namespace skein {
 namespace {
 
@@ -117,6 +121,8 @@ std::string run_contained(const std::string& file, const std::string& what, cons
   }
   if (pid == 0) {
     ::close(fds[0]);
+    if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
+    for (int sig : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) ::signal(sig, SIG_DFL);  // a crash ends the child only
     child(fds[1], limits.memory_gb, work);
   }
   ::close(fds[1]);
