@@ -54,6 +54,7 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
            {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
+           {R"({"patterns": [")" + stock + R"("], "gamma": [1E400]})", "number overflow"},  // found by CI's fuzzing
        }) {
     const auto file = dir.write("bad.json", text);
     const auto out = dir / "out";
