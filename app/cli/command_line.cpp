@@ -284,7 +284,7 @@ int run_command_line(int argc, char** argv) {
   double pat_radius = 0, pat_take_up = 1;
   bool pat_relax = false;
   relax::YarnRelaxOptions pat_options;
-  pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven")->required();
+  pat->add_option("FILE", pat_in, "pattern text (patterns/FORMAT.md): format knit, tiles or woven, written instructions, a chart or a WIF weaving draft")->required();
   pat->add_option("-o,--output", pat_out, "yarn to write (.bcc or .obj polylines); not needed when only --chart-png, --write-chart or --write-instructions is asked");
   pat->add_option("--tile", pat_tile, "repeats across x up (NxM) of the emitted yarn, of --relax --tiled, or of --preview (the periodic patch has its own)")
       ->capture_default_str();

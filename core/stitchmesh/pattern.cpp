@@ -14,6 +14,7 @@
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/written_pattern.hpp"
+#include "stitchmesh/wif_pattern.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -85,6 +86,7 @@ int Pattern::stitches() const {
 }
 
 Pattern parse_pattern(const std::string& text, const std::string& source) {
+  if (is_wif_pattern(text)) return parse_wif_pattern(text, source);
   if (is_chart_pattern(text)) return parse_chart_pattern(text, source);
   if (is_written_pattern(text)) return parse_written_pattern(text, source);
   Pattern p;

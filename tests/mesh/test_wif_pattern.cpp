@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/wif_pattern.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using skein::testing::error_of;
+
+namespace {
+/// A draft's drawdown as text, bottom pick first: one line per pick, 1 where the weft is over the warp.
+std::string rows_text(const mesh::Pattern& p) {
+  std::string out;
+  for (const auto& row : p.over) {
+    for (const char c : row) out += c ? '1' : '0';
+    out += '\n';
+  }
+  return out;
+}
+const std::string kHeader = "[WIF]\nVersion=1.1\nSource Program=a test\n";
+/// A straight draw over `shafts` shafts for `threads` threads.
+std::string straight_threading(int threads, int shafts) {
+  std::string out = "[THREADING]\n";
+  for (int t = 1; t <= threads; ++t) out += std::to_string(t) + "=" + std::to_string((t - 1) % shafts + 1) + "\n";
+  return out;
+}
+std::string error_in(const std::string& text) {
+  return error_of([&] { mesh::parse_pattern(text, "draft.wif"); });
+}
+}  // namespace
+
+TEST(WifPattern, TieUpAndTreadlingWeaveTheDrawdownReducedToItsRepeat) {
+  const auto p = mesh::read_pattern(std::filesystem::path(SKEIN_PATTERNS_DIR) / "wif" / "twill-2-2.wif");
+  EXPECT_EQ(p.format, mesh::PatternFormat::Woven);
+  EXPECT_EQ(p.name, "Twill 2/2 from a WIF draft");
+  EXPECT_EQ(p.note, "a WIF draft from skein's test drafts");
+  // Eight threads and picks of a four-thread twill: pick 1 raises shafts 1 and 2, so threads 1 and 2 go over
+  // the weft (0), each pick one thread further; the repeat is four by four.
+  EXPECT_EQ(rows_text(p), "0011\n1001\n1100\n0110\n");
+}
+
+TEST(WifPattern, ALiftPlanWeavesAsTheTieUpAndTreadlingItStandsFor) {
+  const std::string tieup = "[WEAVING]\nShafts=4\nTreadles=4\n[TIEUP]\n1=1,2\n2=2,3\n3=3,4\n4=4,1\n[TREADLING]\n1=1\n2=2\n3=3\n4=4\n";
+  const std::string lifts = "[WEAVING]\nShafts=4\n[LIFTPLAN]\n1=1,2\n2=2,3\n3=3,4\n4=4,1\n";
+  const auto a = mesh::parse_pattern(kHeader + straight_threading(4, 4) + tieup, "a.wif");
+  const auto b = mesh::parse_pattern(kHeader + straight_threading(4, 4) + lifts, "b.wif");
+  EXPECT_EQ(rows_text(a), rows_text(b));
+  EXPECT_EQ(a.name, "a");  // no [TEXT] Title: the file's stem
+  // The bundled bird's eye: a point draw 1 2 3 4 3 2 lifted by a lift plan.
+  const auto eye = mesh::read_pattern(std::filesystem::path(SKEIN_PATTERNS_DIR) / "wif" / "bird-eye.wif");
+  EXPECT_EQ(rows_text(eye), "001110\n100100\n110001\n011011\n110001\n100100\n");
+}
+
+TEST(WifPattern, ASinkingShedAndTwoTreadlesAtOnceAreWovenAsTheLoomDoes) {
+  const std::string weave = "[WEAVING]\nShafts=2\nTreadles=2\nRising Shed=no\n[TIEUP]\n1=1\n2=2\n[TREADLING]\n1=1\n2=2\n";
+  // Sinking: the tied shaft's threads go under the weft (1), the others over (0): plain weave.
+  EXPECT_EQ(rows_text(mesh::parse_pattern(kHeader + straight_threading(2, 2) + weave, "s.wif")), "10\n01\n");
+  // Both treadles on pick 1 of a rising shed lift every thread: the weft goes under the whole row.
+  const std::string both = "[WEAVING]\nShafts=2\nTreadles=2\n[TIEUP]\n1=1\n2=2\n[TREADLING]\n1=1,2\n2=2\n";
+  EXPECT_EQ(rows_text(mesh::parse_pattern(kHeader + straight_threading(2, 2) + both, "b.wif")), "00\n10\n");
+}
+
+TEST(WifPattern, ADraftWhoseLastRepeatIsCutShortKeepsItsWholeRepeat) {
+  // Nine threads and seven picks of a 1/3 twill: the repeat is still four by four.
+  std::string lifts = "[WEAVING]\nShafts=4\n[LIFTPLAN]\n";
+  for (int pick = 1; pick <= 7; ++pick) lifts += std::to_string(pick) + "=" + std::to_string((pick - 1) % 4 + 1) + "\n";
+  const auto p = mesh::parse_pattern(kHeader + straight_threading(9, 4) + lifts, "t.wif");
+  EXPECT_EQ(p.width(), 4);
+  EXPECT_EQ(p.height(), 4);
+  EXPECT_EQ(rows_text(p), "0111\n1011\n1101\n1110\n");
+  EXPECT_GT(mesh::woven_yarn(p, 2, 2, 2.4, 0.6).points.size(), 0u);
+}
+
+TEST(WifPattern, BrokenDraftsAreRefusedNamingTheLineAndTheRule) {
+  const std::string lifts = "[WEAVING]\nShafts=4\n[LIFTPLAN]\n1=1\n2=2\n";
+  EXPECT_EQ(error_in(kHeader + lifts), "draft.wif: has no [THREADING] section: a WIF draft needs one to say which shafts carry which warp threads");
+  EXPECT_EQ(error_in(kHeader + straight_threading(4, 4) + "[WEAVING]\nShafts=4\n[TIEUP]\n1=1\n"),
+            "draft.wif: has neither a [LIFTPLAN] nor a [TIEUP] with a [TREADLING] section: nothing says which shafts rise on each pick");
+  // A shaft past [WEAVING] Shafts (line 7 is "3=5").
+  EXPECT_EQ(error_in(kHeader + "[THREADING]\n1=1\n2=2\n3=5\n" + lifts), "draft.wif: line 7: shaft 5 is outside 1 to 4");
+  EXPECT_EQ(error_in(kHeader + "[THREADING]\n1=1\nx=2\n" + lifts), "draft.wif: line 6: expected [threading] thread as a whole number, found 'x'");
+  EXPECT_EQ(error_in(kHeader + "[THREADING]\n1=1\n1=2\n" + lifts), "draft.wif: line 6: [threading] gives thread 1 twice");
+  EXPECT_EQ(error_in(kHeader + "[THREADING]\n1=1\n2 2\n" + lifts), "draft.wif: line 6: expected KEY=VALUE in section [threading], found '2 2'");
+  EXPECT_EQ(error_in(kHeader + "[THREADING\n1=1\n"), "draft.wif: line 4: a section header is [NAME], found '[THREADING'");
+  EXPECT_EQ(error_in(kHeader + straight_threading(2, 2) + "[THREADING]\n1=1\n"), "draft.wif: line 7: section [threading] again (first on line 4)");
+  EXPECT_EQ(error_in(kHeader + "[WARP]\nThreads=99999\n" + straight_threading(2, 2) + lifts),
+            "draft.wif: line 5: [warp] Threads 99999 is outside 1 to 10000");
+  EXPECT_EQ(error_in(kHeader + "[WEAVING]\nShafts=2\n" + straight_threading(2, 2) + "[LIFTPLAN]\n1=1\n3=2\n[WEFT]\nThreads=2\n"),
+            "draft.wif: line 11: [liftplan] pick 3 is outside 1 to 2");
+  // A draft that does not repeat within 256 threads: a straight draw over 300 shafts, lifted one by one.
+  std::string wide = "[WEAVING]\nShafts=300\n[LIFTPLAN]\n";
+  for (int pick = 1; pick <= 300; ++pick) wide += std::to_string(pick) + "=" + std::to_string(pick) + "\n";
+  EXPECT_EQ(error_in(kHeader + straight_threading(300, 300) + wide),
+            "draft.wif: the draft's smallest repeat is 300 threads x 300 picks; skein relaxes woven repeats up to 256 x 256");
+}
+
+TEST(WifPattern, ADraftTooLargeToWeaveIsRefusedBeforeItIsWoven) {
+  EXPECT_EQ(error_in(kHeader + "[WEAVING]\nShafts=2\n[WARP]\nThreads=9000\n[WEFT]\nThreads=9000\n" + straight_threading(2, 2) + "[LIFTPLAN]\n1=1\n"),
+            "draft.wif: the draft is 9000 threads x 9000 picks; skein weaves drafts of up to 4000000 cells");
+}
