@@ -11,7 +11,7 @@ namespace skein::render {
 namespace {
 
 const Eigen::Vector3f kInk(0.08f, 0.08f, 0.1f), kGrid(0.6f, 0.6f, 0.62f), kPaper(1, 1, 1), kNoSymbol(0.78f, 0.78f, 0.8f),
-    kCable(0.1f, 0.35f, 0.6f);
+    kCable(0.1f, 0.35f, 0.6f), kNumber(0.3f, 0.3f, 0.55f);
 
 /// Drawing in cell units (x across, y up), each layer a little nearer the eye than the one below it.
 struct Sketch {
@@ -66,6 +66,35 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
       break;
     default: s.box(x + 0.06, y + 0.06, x + 0.94, y + 0.94, kNoSymbol, 0.02); break;
   }
+}
+
+/// Row number `n` as seven-segment digits `height` cells tall, its lower left corner at (x, y); returns the
+/// width it took.
+double draw_number(Sketch& s, int n, double x, double y, double height) {
+  // Segments a (top), b (upper right), c (lower right), d (bottom), e (lower left), f (upper left), g (middle).
+  static const char* const kDigits[] = {"abcdef", "bc", "abged", "abgcd", "fgbc", "afgcd", "afgedc", "abc", "abcdefg", "abcdfg"};
+  const std::string digits = std::to_string(n);
+  const double w = 0.55 * height, line = 0.16 * height, advance = w + 0.35 * height;
+  for (size_t k = 0; k < digits.size(); ++k) {
+    const double x0 = x + k * advance, x1 = x0 + w, y0 = y, y1 = y + height / 2, y2 = y + height;
+    const auto segment = [&](char name) {
+      switch (name) {
+        case 'a': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y2}, {x1, y2}};
+        case 'b': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x1, y2}, {x1, y1}};
+        case 'c': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x1, y1}, {x1, y0}};
+        case 'd': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y0}, {x1, y0}};
+        case 'e': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y1}, {x0, y0}};
+        case 'f': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y2}, {x0, y1}};
+        default: return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y1}, {x1, y1}};
+      }
+    };
+    for (const char* seg = kDigits[digits[k] - '0']; *seg; ++seg) {
+      const auto [a, b] = segment(*seg);
+      const Eigen::Vector2d along = (b - a).normalized() * (line / 2);
+      s.stroke(a - along, b + along, line, kNumber);
+    }
+  }
+  return digits.size() * advance;
 }
 
 /// The glyphs of a face's cells, left to right (its stitch model's order), or "" when the type has no symbol.
@@ -128,14 +157,17 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
     s.stroke(mid + 0.22 * along, back_to, 0.14, kCable, 0.04);
     s.stroke(front_from, front_to, 0.22, kCable, 0.05);
   }
+  // Row numbers at the right of each row, as charts print them (row 1 at the bottom).
+  double numbers = 0;
+  for (int r = 0; r < rows; ++r) numbers = std::max(numbers, draw_number(s, r + 1, width + 0.3, r + 0.25, 0.5));
   // The grid, and the paper under it with a margin.
   for (int r = 0; r <= rows; ++r) s.box(0, r - 0.015, width, r + 0.015, kGrid, 0.01);
   for (int c = 0; c <= width; ++c) s.box(c - 0.015, 0, c + 0.015, rows, kGrid, 0.01);
-  s.box(-0.3, -0.3, width + 0.3, rows + 0.3, kPaper, 0);
+  s.box(-0.3, -0.3, width + 0.5 + numbers, rows + 0.3, kPaper, 0);
   View view;
   view.directions = {{0, 0, -1}};
   view.outlines = false;
-  view.panel = std::clamp(cell * (std::max(width, rows) + 1), 64, 4096);
+  view.panel = std::clamp(static_cast<int>(cell * (std::max(width + numbers, static_cast<double>(rows)) + 1)), 64, 4096);
   return draw(s.polygons, view);
 }
 

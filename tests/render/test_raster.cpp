@@ -86,3 +86,25 @@ TEST(Chart, SymbolsForWhatThePatternHoldsAndNoneForPlainKnit) {
   EXPECT_EQ(plain.second, 0);
   EXPECT_THROW(render::draw_chart(mesh::parse_pattern("format woven\n1 0\n0 1\n", "w.weave")), Error);
 }
+
+TEST(Chart, EveryRowIsNumberedAtTheRight) {
+  // The numbers' slate blue, right of the grid: a chart of 12 rows prints 1 to 12 (15 digits), one of 1 row "1".
+  const auto numbered = [](int rows) {
+    std::string text = "format knit\n";
+    for (int r = 0; r < rows; ++r) text += "k p\n";
+    const auto img = render::draw_chart(mesh::parse_pattern(text, "c.knit"), 20);
+    long number = 0, left = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const unsigned char* px = &img.rgb[3 * (static_cast<size_t>(y) * img.width + x)];
+        const bool slate = px[2] > px[0] + 20 && px[2] < px[0] + 60 && px[0] < 200;
+        number += slate;
+        left += slate && x < img.width / 2;
+      }
+    return std::pair{number, left};
+  };
+  const auto one = numbered(1), twelve = numbered(12);
+  EXPECT_GT(one.first, 5);
+  EXPECT_GT(twelve.first, 8 * one.first);
+  EXPECT_EQ(twelve.second, 0) << "the numbers stand right of the chart";
+}
