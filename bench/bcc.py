@@ -18,3 +18,19 @@ def read_curves(path):
         curves.append(list(struct.iter_unpack("<3f", data[at + 4:at + 4 + 12 * n])))
         at += 4 + 12 * n
     return radius, curves
+
+
+def rewrite_points(src, dst, move):
+    """Copies the .bcc file src to dst with every control point p replaced by move(p) (header and curves kept)."""
+    with open(src, "rb") as f:
+        data = bytearray(f.read())
+    if data[:3] != b"BCC" or len(data) < 64:
+        sys.exit(f"{src}: not a .bcc file")
+    count, at = struct.unpack_from("<Q", data, 8)[0], 64
+    for _ in range(count):
+        n = abs(struct.unpack_from("<i", data, at)[0])
+        for k in range(n):
+            struct.pack_into("<3f", data, at + 4 + 12 * k, *move(struct.unpack_from("<3f", data, at + 4 + 12 * k)))
+        at += 4 + 12 * n
+    with open(dst, "wb") as f:
+        f.write(data)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The gallery of bundled patterns (docs/pattern-gallery.md): every pattern's periodic patch relaxed, tiled to
-# about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/. Run after
-# scripts/build.sh; takes about two minutes on 2 cores.
+# about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/; then the fabrics
+# issue 24 asks to see side by side relaxed by today's defaults and drawn front, back and three-quarter
+# (--views three) into docs/images/fabrics/. Run after scripts/build.sh; takes about twelve minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 skein=build/bin/skein
@@ -36,4 +37,22 @@ title = next((l.split(":", 1)[1].strip() for l in open(f) if l.startswith("# nam
 print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}](images/patterns/{name}.png) |")
 PY
 done
-echo "wrote $page and $images/"
+{
+  echo
+  echo "## Front, back and three-quarter (issue 24)"
+  echo
+  echo "The fabrics issue 24 asks to see side by side, relaxed by \`skein pattern --relax\`'s defaults (L-BFGS, the force"
+  echo "stop rule), tiled 4 x 4 and drawn front, back and three-quarter from above (\`--views three\`). What they show"
+  echo "against real fabric (no rib pulls in, the cable's crossing lies flat, the eyelet's yarn-over tangles over its"
+  echo "hole) is measured in docs/BENCHMARKS.md, \"Relaxed fabric against real fabric\"."
+  echo
+  echo "| pattern | stopped | steps | picture |"
+  echo "| --- | --- | --- | --- |"
+} >>"$page"
+mkdir -p docs/images/fabrics
+for name in stockinette garter rib-1x1 rib-2x2 seed cable-4 eyelet-lace honeycomb; do
+  "$skein" -q pattern "patterns/$name.knit" --relax --tile 4x4 --preview-png "docs/images/fabrics/$name.png" --views three --png-size 450 \
+    -o "$tmp/out.bcc" --report "$tmp/r.json"
+  python3 -c "import json; r = json.load(open('$tmp/r.json')); print(f\"| \`$name\` | {r['stopped_by']} | {r['steps']} | ![$name, front, back and three-quarter](images/fabrics/$name.png) |\")" >>"$page"
+done
+echo "wrote $page, $images/ and docs/images/fabrics/"

@@ -193,8 +193,8 @@ int run_command_line(int argc, char** argv) {
   std::string ry_ids;
   ry->add_option("--ids", ry_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md), for outside checks; a project's yarn");
   std::string ry_views = "garment";
-  ry->add_option("--views", ry_views, "garment (three-quarter front, back-side) or flat (front, back) for --png")
-      ->check(CLI::IsMember({"garment", "flat"}))->capture_default_str();
+  ry->add_option("--views", ry_views, "garment (three-quarter front, back-side), flat (front, back) or three (front, back, three-quarter) for --png")
+      ->check(CLI::IsMember({"garment", "flat", "three"}))->capture_default_str();
   ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
   ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
   ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
@@ -349,7 +349,8 @@ int run_command_line(int argc, char** argv) {
       ->capture_default_str();
   std::string pat_views = "flat";
   int pat_panel = 900;
-  pat->add_option("--views", pat_views, "flat (front and back) or front, for --png")->check(CLI::IsMember({"flat", "front"}))->capture_default_str();
+  pat->add_option("--views", pat_views, "flat (front and back), front, or three (front, back, three-quarter), for --png and --preview-png")
+      ->check(CLI::IsMember({"flat", "front", "three"}))->capture_default_str();
   pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(CLI::Range(64, 4096))->capture_default_str();
   std::string pat_onto, pat_rows;
   int pat_face = 0;
@@ -409,8 +410,8 @@ int run_command_line(int argc, char** argv) {
   render_cmd->add_option("--color", render_color, "row or type for stitch meshes; type or yarn for yarn")
       ->check(CLI::IsMember({"row", "type", "yarn"}));
   std::string render_views = "garment";
-  render_cmd->add_option("--views", render_views, "garment (three-quarter front, back-side) or flat (front, back)")
-      ->check(CLI::IsMember({"garment", "flat"}));
+  render_cmd->add_option("--views", render_views, "garment (three-quarter front, back-side), flat (front, back) or three (front, back, three-quarter)")
+      ->check(CLI::IsMember({"garment", "flat", "three"}));
 
   // skein devices
   auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");

@@ -89,6 +89,7 @@ render::View view_named(const std::string& name) {
   render::View view;
   if (name == "flat") view.directions = {{0, 0, -1}, {0, 0, 1}};
   if (name == "front") view.directions = {{0, 0, -1}};
+  if (name == "three") view.directions = {{0, 0, -1}, {0, 0, 1}, {0.4, -0.35, -1.0}};  // front, back, three-quarter from above
   return view;
 }
 

@@ -86,7 +86,7 @@ void write_json(const json& j, const std::string& path);
 void print_text(const json& j, const std::string& prefix);
 
 /// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches); "front": the
-/// straight front alone.
+/// straight front alone; "three": front, back and a three-quarter view from above the front.
 render::View view_named(const std::string& name);
 void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
                        int panel = 900);

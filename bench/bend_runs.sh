@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Does the model's knitted fabric have a curling moment and a bending stiffness? (issue 24; docs/BENCHMARKS.md
+# "Bent and let go"). Each swatch is relaxed flat with free borders (`skein pattern --relax --tiled`, L-BFGS, the
+# force stop rule), then bent onto a cylinder of radius R (bench/bend_swatch.py) along the courses (as when the
+# side edges curl) and along the wales (as when the top and bottom curl), with the knit side concave (front) or
+# convex (back), and each bent swatch relaxed again from there, as is the flat one (its rest lengths are then
+# the relaxed yarn's own, the same for all five). A fabric with a bending stiffness springs back (kept < 1); one
+# with a curling moment ends lower in energy bent one way than flat. Real stockinette curls its side edges to
+# the back (course, back lower) and its top and bottom to the front (wale, front lower); garter lies flat.
+# Usage: bench/bend_runs.sh [R]   (R = 20 mm by default; prints a markdown table; about 30 minutes on 2 cores)
+source "$(dirname "$0")/common.sh"
+radius=${1:-20}
+relax=(--method lbfgs --stop-rule force --no-audit)
+echo "| swatch | bent along | knit side | energy against flat | curvature bent [1/mm] | relaxed [1/mm] | kept | steps |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+for entry in "stockinette:12x16:" "stockinette:12x16:--yarn-radius 0.9 --take-up 0.935" "garter:12x8:"; do
+  IFS=: read -r p tile options <<<"$entry"
+  name="$p${options:+ (${options})}"
+  # shellcheck disable=SC2086
+  "$skein" -q pattern "patterns/$p.knit" --relax --tiled --tile "$tile" $options "${relax[@]}" -o "$tmp/flat.bcc"
+  "$skein" -q relax-yarn "$tmp/flat.bcc" "${relax[@]}" -o "$tmp/flat-again.bcc" --report "$tmp/flat.json"
+  flat_energy=$(field "$tmp/flat.json" "r['energy']")
+  for axis in course wale; do
+    for side in front back; do
+      python3 bench/bend_swatch.py bend "$tmp/flat.bcc" "$tmp/bent.bcc" "$axis" "$radius" "$side"
+      "$skein" -q relax-yarn "$tmp/bent.bcc" "${relax[@]}" -o "$tmp/bent-relaxed.bcc" --report "$tmp/bent.json"
+      before=$(python3 bench/bend_swatch.py curvature "$tmp/bent.bcc" "$axis")
+      after=$(python3 bench/bend_swatch.py curvature "$tmp/bent-relaxed.bcc" "$axis")
+      field "$tmp/bent.json" "'| $name | ${axis}s | ${side/front/concave} | %+.2f %% | %.4f | %.4f | %.2f | %d (%s) |' % \
+        (100 * (r['energy'] / $flat_energy - 1), abs($before), abs($after), $after / $before, r['steps'], r['stopped_by'])" \
+        | sed 's/| back |/| convex |/'
+    done
+  done
+done
