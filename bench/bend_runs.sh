@@ -8,14 +8,34 @@
 # with a curling moment ends lower in energy bent one way than flat. Real stockinette curls its side edges to
 # the back (course, back lower) and its top and bottom to the front (wale, front lower); garter lies flat.
 # Usage: bench/bend_runs.sh [R]   (R = 20 mm by default; prints a markdown table; about 30 minutes on 2 cores)
+#        DEPTH=F bench/bend_runs.sh [R]   only the default stockinette, its knit stitch model's depths (h) times F
 source "$(dirname "$0")/common.sh"
 radius=${1:-20}
 relax=(--method lbfgs --stop-rule force --no-audit)
+entries=("stockinette:12x16:" "stockinette:12x16:--yarn-radius 0.9 --take-up 0.935" "garter:12x8:")
+if [ -n "${DEPTH:-}" ]; then
+  cp -r stitches "$tmp/stitches"
+  python3 - "$tmp/stitches/k.stitch" "$DEPTH" <<'PY'
+import sys
+path, factor = sys.argv[1], float(sys.argv[2])
+lines = []
+for line in open(path):
+    fields = line.split()
+    try:
+        u, v, h = map(float, fields) if len(fields) == 3 else (None,) * 3
+    except ValueError:
+        u = None
+    lines.append(f"  {u:g} {v:g} {h * factor:g}\n" if u is not None else line)
+open(path, "w").write("".join(lines))
+PY
+  entries=("stockinette:12x16:--stitches $tmp/stitches")
+fi
 echo "| swatch | bent along | knit side | energy against flat | curvature bent [1/mm] | relaxed [1/mm] | kept | steps |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
-for entry in "stockinette:12x16:" "stockinette:12x16:--yarn-radius 0.9 --take-up 0.935" "garter:12x8:"; do
+for entry in "${entries[@]}"; do
   IFS=: read -r p tile options <<<"$entry"
   name="$p${options:+ (${options})}"
+  [ -n "${DEPTH:-}" ] && name="$p (knit depths x $DEPTH)"
   # shellcheck disable=SC2086
   "$skein" -q pattern "patterns/$p.knit" --relax --tiled --tile "$tile" $options "${relax[@]}" -o "$tmp/flat.bcc"
   "$skein" -q relax-yarn "$tmp/flat.bcc" "${relax[@]}" -o "$tmp/flat-again.bcc" --report "$tmp/flat.json"
