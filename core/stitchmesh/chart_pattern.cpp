@@ -42,22 +42,46 @@ int cells_of(const std::string& abbreviation) {
   return 1;
 }
 
-/// The Craft Yarn Council's chart symbols, in the characters a text file can hold.
-std::map<char, Symbol> default_key() {
-  return {{'.', {"k", "p"}},           {'|', {"k", "p"}},           {'-', {"p", "k"}},        {'o', {"yo", "yo"}},
-          {'O', {"yo", "yo"}},         {'/', {"k2tog", "p2tog"}},   {'\\', {"ssk", "ssp"}},    {'v', {"sl1 wyib", "sl1 wyif"}},
-          {'V', {"sl1 wyib", "sl1 wyif"}}, {'t', {"k1 tbl", ""}},   {'^', {"sk2p", ""}},      {'x', {"", "", 1, true}}};
+/// The Craft Yarn Council's chart symbols: in ASCII, and as charts print them in Unicode (UTF-8): a dot for
+/// purl, a ring for a yarn-over, an inverted V for a centred double decrease, a filled square for no stitch.
+std::map<std::string, Symbol> default_key() {
+  return {{".", {"k", "p"}},           {"|", {"k", "p"}},           {"-", {"p", "k"}},        {"o", {"yo", "yo"}},
+          {"O", {"yo", "yo"}},         {"/", {"k2tog", "p2tog"}},   {"\\", {"ssk", "ssp"}},    {"v", {"sl1 wyib", "sl1 wyif"}},
+          {"V", {"sl1 wyib", "sl1 wyif"}}, {"t", {"k1 tbl", ""}},   {"^", {"sk2p", ""}},      {"x", {"", "", 1, true}},
+          {"\u25A1", {"k", "p"}},  // □ white square: a blank cell
+          {"\u2022", {"p", "k"}},  // • bullet
+          {"\u25CF", {"p", "k"}},  // ● black circle
+          {"\u2013", {"p", "k"}},  // – en dash
+          {"\u2212", {"p", "k"}},  // − minus sign
+          {"\u25CB", {"yo", "yo"}},  // ○ white circle
+          {"\u25EF", {"yo", "yo"}},  // ◯ large circle
+          {"\u2227", {"sk2p", ""}},  // ∧ logical and
+          {"\u039B", {"sk2p", ""}},  // Λ Greek capital lambda
+          {"\u2228", {"sl1 wyib", "sl1 wyif"}},  // ∨ logical or
+          {"\u25A0", {"", "", 1, true}}};  // ■ black square
 }
 
-std::string key_symbols(const std::map<char, Symbol>& key) {
+std::string key_symbols(const std::map<std::string, Symbol>& key) {
   std::string out;
-  for (const auto& [c, s] : key) out += std::string(out.empty() ? "" : " ") + c;
+  for (const auto& [c, s] : key) out += (out.empty() ? "" : " ") + c;
   return out;
+}
+
+/// The length in bytes of the UTF-8 character that starts at text[i] (1 for ASCII), or 0 when the bytes there
+/// are not one.
+size_t utf8_length(const std::string& text, size_t i) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  const size_t n = lead < 0x80 ? 1 : lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3 : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
+  if (n == 0 || i + n > text.size()) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  return n;
 }
 
 /// One chart row as drawn: its cells (symbol, 1-based column) left to right, its line, its number if written.
 struct ChartRow {
-  std::vector<std::pair<char, int>> cells;
+  std::vector<std::pair<std::string, int>> cells;  ///< each symbol one UTF-8 character
   int line = 0, number = 0;
 };
 
@@ -130,12 +154,14 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
       // "key C C4F", "key t k1 tbl / p1 tbl", "key x no stitch": a symbol and its stitch, right side / wrong side.
       if (!drawn.empty()) throw Error(source, at(line_no, 0), "a key line after the chart's rows: give the key first");
       const std::string rest = trim(content.substr(4));
-      if (rest.size() < 3 || std::isspace(static_cast<unsigned char>(rest[0])) || !std::isspace(static_cast<unsigned char>(rest[1])))
+      const size_t length = rest.empty() ? 0 : utf8_length(rest, 0);
+      if (rest.size() < length + 2 || length == 0 || std::isspace(static_cast<unsigned char>(rest[0])) ||
+          !std::isspace(static_cast<unsigned char>(rest[length])))
         throw Error(source, at(line_no, 0), "expected 'key SYMBOL STITCH' with a one-character symbol (e.g. 'key C C4F')");
-      const char symbol = rest[0];
-      if (std::isdigit(static_cast<unsigned char>(symbol)) || static_cast<unsigned char>(symbol) > 126)
-        throw Error(source, at(line_no, 0), "a chart symbol is one printable ASCII character other than a digit (digits number the rows)");
-      const std::string meaning = trim(rest.substr(1));
+      const std::string symbol = rest.substr(0, length);
+      if (length == 1 && (std::isdigit(static_cast<unsigned char>(symbol[0])) || static_cast<unsigned char>(symbol[0]) < 33 || symbol[0] == 127))
+        throw Error(source, at(line_no, 0), "a chart symbol is one printable character other than a digit (digits number the rows)");
+      const std::string meaning = trim(rest.substr(length));
       Symbol s;
       if (meaning == "no stitch") {
         s.no_stitch = true;
@@ -151,23 +177,28 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
     // A row of the grid: one character a cell, spaces between them or not, its row number at either end.
     ChartRow row;
     row.line = line_no;
-    for (size_t i = 0; i < line.size(); ++i) {
-      const char c = line[i];
-      if (c == ' ' || c == '\t' || c == '\r') continue;
-      if (std::isdigit(static_cast<unsigned char>(c))) {
+    int column = 0;  // characters, not bytes
+    for (size_t i = 0; i < line.size(); i += utf8_length(line, i)) {
+      ++column;
+      const size_t length = utf8_length(line, i);
+      if (length == 0) throw Error(source, at(line_no, column), "is not UTF-8 text here: a chart cell is one character (ASCII or UTF-8)");
+      const std::string c = line.substr(i, length);
+      if (c == " " || c == "\t" || c == "\r") continue;
+      if (std::isdigit(static_cast<unsigned char>(c[0]))) {
         size_t j = i;
         while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
         const bool first = row.cells.empty(), last = trim(line.substr(j)).empty();
         if ((!first && !last) || row.number > 0 || j - i > 6)
-          throw Error(source, at(line_no, static_cast<int>(i) + 1), "a number inside a chart row: row numbers go at its start or its end");
+          throw Error(source, at(line_no, column), "a number inside a chart row: row numbers go at its start or its end");
         row.number = std::stoi(line.substr(i, j - i));
-        i = j - 1;
+        column += static_cast<int>(j - i) - 1;
+        i = j - 1;  // the loop steps past the last digit
         continue;
       }
       if (!key.count(c))
-        throw Error(source, at(line_no, static_cast<int>(i) + 1),
-                    std::string("'") + c + "' is not in the chart's key (" + key_symbols(key) + "; add 'key " + c + " STITCH' above the chart)");
-      row.cells.emplace_back(c, static_cast<int>(i) + 1);
+        throw Error(source, at(line_no, column),
+                    "'" + c + "' is not in the chart's key (" + key_symbols(key) + "; add 'key " + c + " STITCH' above the chart)");
+      row.cells.emplace_back(c, column);
     }
     if (row.cells.empty()) throw Error(source, at(line_no, 0), "a chart row with no cells");
     drawn.push_back(row);
@@ -186,7 +217,7 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
     MadeRow out;
     out.chart_line = row.line;
     out.text = round ? "Rnd " + std::to_string(r) + ": " : "Row " + std::to_string(r) + (right_side ? " (RS): " : " (WS): ");
-    std::vector<std::pair<char, int>> cells = row.cells;
+    std::vector<std::pair<std::string, int>> cells = row.cells;
     if (right_side) std::reverse(cells.begin(), cells.end());
     bool any = false;
     for (size_t i = 0; i < cells.size();) {

@@ -206,6 +206,12 @@ TEST(ChartPattern, ChartsReadAsTheWrittenRowsAKnitterReadsOffThem) {
     const auto chart = mesh::parse_pattern(text, name + ".txt");
     EXPECT_TRUE(same_fabric(chart, expected)) << name << ": " << text << "read as " << rows_text(chart);
   }
+  // Charts as printed, in Unicode: a bullet for purl, a ring for a yarn-over, a key of its own in UTF-8.
+  EXPECT_EQ(mesh::parse_pattern("format chart\n\u2022 . \u2022 .\n. \u2022 . \u2022\n", "s.txt").rows,
+            mesh::parse_pattern("format chart\n- . - .\n. - . -\n", "s.txt").rows);
+  EXPECT_EQ(mesh::parse_pattern("format chart\n. . . .\n. / \u25CB .\n", "e.txt").rows, mesh::parse_pattern("format chart\n. . . .\n. / o .\n", "e.txt").rows);
+  EXPECT_EQ(mesh::parse_pattern("format chart round\nkey \u25C6 k1 tbl\n\u25C6 \u2022\n", "t.txt").rows, mesh::parse_pattern("format chart round\nt -\n", "t.txt").rows);
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/moss-printed.txt"), bundled("moss")));
   // A chart and the written rows it draws: the same stitches, decreases and yarn-overs included.
   const auto chart = mesh::parse_pattern("format chart\n. . . .\n. / o .\n", "e.txt");
   const auto written = mesh::parse_pattern("Row 1 (RS): *K1, yo, k2tog, k1; rep from * to end.\nRow 2: Purl.\n", "e.txt");
@@ -227,7 +233,8 @@ TEST(ChartPattern, ChartsReadAsTheWrittenRowsAKnitterReadsOffThem) {
 TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("format chart\n. . Q .\n"),
-            "p.txt: line 2, column 5: 'Q' is not in the chart's key (- . / O V \\ ^ o t v x |; add 'key Q STITCH' above the chart)");
+            "p.txt: line 2, column 5: 'Q' is not in the chart's key (- . / O V \\ ^ o t v x | \u039B \u2013 \u2022 \u2212 \u2227 \u2228 \u25A0 \u25A1 \u25CB \u25CF "
+            "\u25EF; add 'key Q STITCH' above the chart)");
   EXPECT_EQ(error("format chart\nkey C C4F\n. C C C .\n"), "p.txt: line 3, column 3: 'C' is C4F, drawn over 4 cells, but here over 3");
   EXPECT_EQ(error("format chart\n. .  2\n. .  2\n"), "p.txt: line 3: is numbered 2 but is row 1 (the bottom row is row 1)");
   EXPECT_EQ(error("format chart\nt .\n. .\n"),
@@ -235,7 +242,11 @@ TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
   EXPECT_EQ(error("format chart\n. .\nkey C C4F\n"), "p.txt: line 3: a key line after the chart's rows: give the key first");
   EXPECT_EQ(error("format chart\n. 3 .\n"), "p.txt: line 2, column 3: a number inside a chart row: row numbers go at its start or its end");
   EXPECT_EQ(error("format chart\n"), "p.txt: holds no chart rows");
-  EXPECT_EQ(error("format chart\nkey 7 k\n. .\n"), "p.txt: line 2: a chart symbol is one printable ASCII character other than a digit (digits number the rows)");
+  EXPECT_EQ(error("format chart\nkey 7 k\n. .\n"), "p.txt: line 2: a chart symbol is one printable character other than a digit (digits number the rows)");
+  // Columns count characters, not bytes: the ring is three bytes of UTF-8 and one cell.
+  EXPECT_EQ(error("format chart\n\u25CB Q\n"), error("format chart\n. Q\n"));
+  EXPECT_EQ(error("format chart\n. \xff .\n"), "p.txt: line 2, column 3: is not UTF-8 text here: a chart cell is one character (ASCII or UTF-8)");
+  EXPECT_EQ(error("format chart\n. \xe2\x80\n"), "p.txt: line 2, column 3: is not UTF-8 text here: a chart cell is one character (ASCII or UTF-8)");
   // What the written reader refuses in the row a chart makes, placed on the chart: the lone yarn-over's cell.
   const auto lone = error("format chart\n. . . .\n. o . .\n");
   EXPECT_EQ(lone.rfind("p.txt: line 3, column 3: a yarn-over has a stitch model only beside its decrease", 0), 0u) << lone;
