@@ -18,14 +18,15 @@ if [ -n "${DEPTH:-}" ]; then
   python3 - "$tmp/stitches/k.stitch" "$DEPTH" <<'PY'
 import sys
 path, factor = sys.argv[1], float(sys.argv[2])
-lines = []
-for line in open(path):
+def scaled(line):
+    """A point line "  u v h" with h times the factor; any other line as it is."""
     fields = line.split()
     try:
-        u, v, h = map(float, fields) if len(fields) == 3 else (None,) * 3
-    except ValueError:
-        u = None
-    lines.append(f"  {u:g} {v:g} {h * factor:g}\n" if u is not None else line)
+        u, v, h = (float(f) for f in fields)
+    except ValueError:  # not three numbers
+        return line
+    return f"  {u:g} {v:g} {h * factor:g}\n"
+lines = [scaled(line) for line in open(path)]
 open(path, "w").write("".join(lines))
 PY
   entries=("stockinette:12x16:--stitches $tmp/stitches")

@@ -77,19 +77,12 @@ double draw_number(Sketch& s, int n, double x, double y, double height) {
   const double w = 0.55 * height, line = 0.16 * height, advance = w + 0.35 * height;
   for (size_t k = 0; k < digits.size(); ++k) {
     const double x0 = x + k * advance, x1 = x0 + w, y0 = y, y1 = y + height / 2, y2 = y + height;
-    const auto segment = [&](char name) {
-      switch (name) {
-        case 'a': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y2}, {x1, y2}};
-        case 'b': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x1, y2}, {x1, y1}};
-        case 'c': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x1, y1}, {x1, y0}};
-        case 'd': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y0}, {x1, y0}};
-        case 'e': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y1}, {x0, y0}};
-        case 'f': return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y2}, {x0, y1}};
-        default: return std::pair<Eigen::Vector2d, Eigen::Vector2d>{{x0, y1}, {x1, y1}};
-      }
-    };
+    const double xs[2] = {x0, x1}, ys[3] = {y0, y1, y2};
+    // Each segment's two ends, a to g: (column 0 or 1, height 0, 1 or 2 halves) and the same for the other end.
+    static const int kEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, {0, 0, 1, 0}, {0, 1, 0, 0}, {0, 2, 0, 1}, {0, 1, 1, 1}};
     for (const char* seg = kDigits[digits[k] - '0']; *seg; ++seg) {
-      const auto [a, b] = segment(*seg);
+      const int* e = kEnds[*seg - 'a'];
+      const Eigen::Vector2d a(xs[e[0]], ys[e[1]]), b(xs[e[2]], ys[e[3]]);
       const Eigen::Vector2d along = (b - a).normalized() * (line / 2);
       s.stroke(a - along, b + along, line, kNumber);
     }

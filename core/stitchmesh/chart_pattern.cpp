@@ -12,17 +12,12 @@
 
 #include "common/error.hpp"
 #include "stitchmesh/written_pattern.hpp"
+#include "stitchmesh/text.hpp"
 
 namespace skein::mesh {
 namespace {
 
 constexpr size_t kLongestLine = 4096;
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
 
 /// What a symbol means: the stitch worked on a right-side row and on a wrong-side row (written abbreviations;
 /// empty: none), and how many cells it is drawn over (a cable's stitches, else 1).

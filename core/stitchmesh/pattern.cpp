@@ -15,6 +15,7 @@
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/written_pattern.hpp"
 #include "stitchmesh/wif_pattern.hpp"
+#include "stitchmesh/text.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -48,11 +49,6 @@ std::vector<Token> split(const std::string& line) {
     out.push_back({line.substr(start, i - start), static_cast<int>(start) + 1});
   }
   return out;
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
-  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
 std::string known_types() {

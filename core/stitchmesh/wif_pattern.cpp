@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "stitchmesh/text.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -18,17 +19,6 @@ namespace {
 constexpr int kMostThreads = 10000;  // threads or picks of a draft: far past a loom's
 constexpr int kLongestRepeat = 256;  // threads or picks of the repeat skein relaxes
 constexpr long kMostCells = 4'000'000;  // threads x picks of the drawdown
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 std::string line_at(int line) { return "line " + std::to_string(line); }
 
@@ -181,8 +171,7 @@ Pattern parse_wif_pattern(const std::string& text, const std::string& source) {
   if (!lift_plan && !(s.find("tieup") && s.find("treadling")))
     throw Error(source, "", "has neither a [LIFTPLAN] nor a [TIEUP] with a [TREADLING] section: nothing says which shafts rise on each pick");
 
-  const auto shafts_given = count(s, "weaving", "shafts", source);
-  const int shafts = shafts_given.value_or(kMostThreads);
+  const int shafts = count(s, "weaving", "shafts", source).value_or(kMostThreads);
   const int warps = count(s, "warp", "threads", source).value_or(largest_index(s, "threading", "thread", source));
   const std::string pick_table = lift_plan ? "liftplan" : "treadling";
   const int picks = count(s, "weft", "threads", source).value_or(largest_index(s, pick_table, "pick", source));
@@ -193,40 +182,40 @@ Pattern parse_wif_pattern(const std::string& text, const std::string& source) {
     throw Error(source, "", "the draft is " + std::to_string(warps) + " threads x " + std::to_string(picks) + " picks; skein weaves drafts of up to " +
                                 std::to_string(kMostCells) + " cells");
   const auto threading = table(s, "threading", warps, shafts, "thread", "shaft", source);
-  std::vector<std::set<int>> lifted(picks);  // per pick, the shafts that rise (rising shed) or sink
+  std::vector<std::set<int>> tied(picks);  // per pick, the shafts its tie-up moves: up in a rising shed, down in a sinking one
   if (lift_plan) {
-    for (const auto& [pick, shafts_up] : table(s, "liftplan", picks, shafts, "pick", "shaft", source)) lifted[pick - 1] = shafts_up;
+    for (const auto& [pick, shafts_moved] : table(s, "liftplan", picks, shafts, "pick", "shaft", source)) tied[pick - 1] = shafts_moved;
   } else {
     const int treadles = count(s, "weaving", "treadles", source).value_or(kMostThreads);
     const auto tieup = table(s, "tieup", treadles, shafts, "treadle", "shaft", source);
     for (const auto& [pick, used] : table(s, "treadling", picks, treadles, "pick", "treadle", source))
       for (const int treadle : used)
-        if (const auto it = tieup.find(treadle); it != tieup.end()) lifted[pick - 1].insert(it->second.begin(), it->second.end());
+        if (const auto it = tieup.find(treadle); it != tieup.end()) tied[pick - 1].insert(it->second.begin(), it->second.end());
   }
   const Entry* shed = s.value("weaving", "rising shed");
   const bool rising = !shed || truthy(shed->value);
 
-  // The drawdown: 1 where the weft lies over the warp (the warp thread stays down), pick 1 at the bottom.
-  std::vector<std::vector<char>> down(picks, std::vector<char>(warps));
-  for (int pick = 0; pick < picks; ++pick)
-    for (int t = 0; t < warps; ++t) {
-      bool raised = false;
-      if (const auto it = threading.find(t + 1); it != threading.end())
-        for (const int shaft : it->second) raised = raised || lifted[pick].count(shaft) > 0;
-      if (!rising) raised = !raised && threading.count(t + 1) > 0 && !threading.at(t + 1).empty();
-      down[pick][t] = raised ? 0 : 1;
+  // The drawdown, pick 1 at the bottom: 1 where the weft lies over the warp, 0 where the warp thread is raised
+  // (one of its shafts lifted; in a sinking shed, none of its shafts sunk). An unthreaded thread stays down.
+  std::vector<std::vector<char>> over(picks, std::vector<char>(warps, 1));
+  for (const auto& [thread, its_shafts] : threading) {
+    if (its_shafts.empty()) continue;
+    for (int pick = 0; pick < picks; ++pick) {
+      const bool moved = std::any_of(its_shafts.begin(), its_shafts.end(), [&](int shaft) { return tied[pick].count(shaft) > 0; });
+      if (moved == rising) over[pick][thread - 1] = 0;
     }
+  }
 
   // The smallest repeat up (rows) and across (columns).
-  const int up = smallest_period(down);
+  const int up = smallest_period(over);
   std::vector<std::vector<char>> columns(warps, std::vector<char>(up));
   for (int t = 0; t < warps; ++t)
-    for (int pick = 0; pick < up; ++pick) columns[t][pick] = down[pick][t];
+    for (int pick = 0; pick < up; ++pick) columns[t][pick] = over[pick][t];
   const int across = smallest_period(columns);
   if (up > kLongestRepeat || across > kLongestRepeat)
     throw Error(source, "", "the draft's smallest repeat is " + std::to_string(across) + " threads x " + std::to_string(up) +
                                 " picks; skein relaxes woven repeats up to " + std::to_string(kLongestRepeat) + " x " + std::to_string(kLongestRepeat));
-  for (int pick = 0; pick < up; ++pick) p.over.emplace_back(down[pick].begin(), down[pick].begin() + across);
+  for (int pick = 0; pick < up; ++pick) p.over.emplace_back(over[pick].begin(), over[pick].begin() + across);
   return p;
 }
 

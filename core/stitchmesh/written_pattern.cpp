@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "stitchmesh/text.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::mesh {
@@ -21,11 +22,6 @@ constexpr size_t kLongestLine = 4096;
 /// A count as written (the digits a pattern gives): its value, or a million for more than six digits, which
 /// every bound below refuses (std::stoi would throw out of range on a long one).
 int count_of(const std::string& digits) { return digits.size() > 6 ? 1000000 : std::stoi(digits); }
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 /// The counts books write in words, and digits: "once", "twice", "thrice", "one" to "ten"; 0 for none of them.
 int count_in_words(const std::string& text) {
