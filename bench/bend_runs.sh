@@ -44,7 +44,7 @@ for entry in "${entries[@]}"; do
   for axis in course wale; do
     for side in front back; do
       python3 bench/bend_swatch.py bend "$tmp/flat.bcc" "$tmp/bent.bcc" "$axis" "$radius" "$side"
-      "$skein" -q relax-yarn "$tmp/bent.bcc" "${relax[@]}" -o "$tmp/bent-relaxed.bcc" --report "$tmp/bent.json"
+      "$skein" -q relax-yarn "$tmp/bent.bcc" --rest-lengths "$tmp/flat.bcc" "${relax[@]}" -o "$tmp/bent-relaxed.bcc" --report "$tmp/bent.json"
       before=$(python3 bench/bend_swatch.py curvature "$tmp/bent.bcc" "$axis")
       after=$(python3 bench/bend_swatch.py curvature "$tmp/bent-relaxed.bcc" "$axis")
       field "$tmp/bent.json" "'| $name | ${axis}s | ${side/front/concave} | %+.2f %% | %.4f | %.4f | %.2f | %d (%s) |' % \

@@ -224,6 +224,10 @@ int run_command_line(int argc, char** argv) {
   ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
   ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
+  std::string ry_rest_lengths;
+  ry->add_option("--rest-lengths", ry_rest_lengths,
+                 "a .bcc of the same yarn in another shape whose lengths (× --take-up) are the rest lengths, instead of the input's own "
+                 "(e.g. a swatch relaxed flat, then bent: the bent one relaxes with the flat yarn's lengths)");
   std::vector<std::string> ry_take_up_stitch;
   ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
@@ -718,6 +722,8 @@ int run_command_line(int argc, char** argv) {
         if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
         ids_mesh = *project.stitch;
       }
+      if (!ry_rest_lengths.empty() && (ry_stand_in || !ry_warm.empty()))
+        throw Error("", "--rest-lengths", "applies to a whole relaxation, not to --stand-in or --warm-start");
       if (!ry_warm.empty() || !ry_warm_project.empty()) {
         if (ry_warm.empty() || ry_warm_project.empty() || !is_project(ry_in))
           throw Error("", "--warm-start", "relaxes a .skein project from the relaxed yarn (--warm-start) of the project before the edits (--warm-project)");
@@ -802,7 +808,12 @@ int run_command_line(int argc, char** argv) {
         if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
         return 0;
       }
-      const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
+      const auto system =
+          ry_rest_lengths.empty()
+              ? relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling)
+              : relax::with_rest_lengths_of(relax::make_yarn_system(relax::read_bcc(ry_rest_lengths), ry_take_up,
+                                                                    parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling),
+                                            yarn, ry_rest_lengths);
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
                    system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
                    targets.boundary_loops.size(), targets.patches.size(), t.seconds());

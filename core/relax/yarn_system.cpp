@@ -149,6 +149,20 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, cons
   return s;
 }
 
+YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves, const std::string& where) {
+  if (curves.curves() != rest.num_curves())
+    throw Error(where, "", "holds " + std::to_string(curves.curves()) + " yarns where the yarn relaxed holds " + std::to_string(rest.num_curves()));
+  for (int c = 0; c < rest.num_curves(); ++c) {
+    const int size = rest.curve_start[c + 1] - rest.curve_start[c];
+    if (curves.curve_size(c) != size || (curves.closed[c] != 0) != (rest.closed[c] != 0))
+      throw Error(where, "yarn " + std::to_string(c),
+                  "has " + std::to_string(curves.curve_size(c)) + (curves.closed[c] ? " points, closed," : " points, open,") +
+                      " where the yarn relaxed has " + std::to_string(size) + (rest.closed[c] ? " points, closed" : " points, open"));
+  }
+  for (int p = 0; p < rest.num_points(); ++p) rest.points.col(p) = curves.points[p];
+  return rest;
+}
+
 mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points) {
   mesh::YarnCurves out = curves;
   for (int p = 0; p < static_cast<int>(out.points.size()); ++p) out.points[p] = points.col(p);

@@ -67,6 +67,12 @@ struct ContactSampling {
 YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {},
                             const ContactSampling& sampling = {});
 
+/// The system `rest` (its segments, rest lengths and samples) with its points moved to those of `curves`, the same
+/// yarn in another shape: a swatch bent after relaxing flat keeps the flat yarn's lengths as its rest lengths,
+/// where make_yarn_system(curves) would take the bent lengths (relax-yarn --rest-lengths). Throws skein::Error,
+/// naming `where`, when the two do not hold the same curves (count, points per curve, open or closed).
+YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves, const std::string& where);
+
 /// The curves with only the points where `keep` is set: a curve is cut where it loses points (a closed curve
 /// that loses some opens there, just after a lost point) and pieces of fewer than two points are dropped; the
 /// pieces keep their order. `index`: per input point its index in the result, or -1.

@@ -229,3 +229,21 @@ TEST(YarnSystem, TakeUpPerStitchTypeScalesOnlyThatTypesSegments) {
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"q", 0.8}}); }).find("the yarn has no stitch of that type"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s", -1}}); }).find("must be positive"), std::string::npos);
 }
+
+TEST(YarnSystem, RestLengthsOfAnotherShapeKeepTheirLengthsAndTakeTheNewPoints) {
+  const auto flat = skein::testing::linked_rings(0.5, 24);
+  auto bent = flat;
+  for (auto& p : bent.points) p = Eigen::Vector3d(p.x() * 1.5, p.y(), p.z() + 0.1 * p.x() * p.x());  // longer rings
+  const auto rest = make_yarn_system(flat, 0.9);
+  const auto system = with_rest_lengths_of(rest, bent, "flat.bcc");
+  EXPECT_EQ(system.rest_length, rest.rest_length);
+  EXPECT_EQ(system.contact_samples, rest.contact_samples);
+  for (int p = 0; p < system.num_points(); ++p) EXPECT_EQ(system.points.col(p), bent.points[p]);
+  EXPECT_GT(make_yarn_system(bent, 0.9).curve_length[0], rest.curve_length[0] * 1.1);  // its own lengths would be longer
+  auto fewer = bent;
+  fewer.points.pop_back();
+  fewer.curve_start.back() -= 1;
+  fewer.point_type.resize(fewer.points.size());
+  EXPECT_EQ(skein::testing::error_of([&] { with_rest_lengths_of(rest, fewer, "flat.bcc"); }),
+            "flat.bcc: yarn 1: has 23 points, closed, where the yarn relaxed has 24 points, closed");
+}
