@@ -239,6 +239,8 @@ int run_command_line(int argc, char** argv) {
   ry->add_option("--k-length", ry_options.params.k_length, "length penalty stiffness (Leaf eq. 1)")->capture_default_str();
   ry->add_option("--k-contact", ry_options.params.k_contact, "contact stiffness (Leaf eq. 9)")->capture_default_str();
   ry->add_option("--k-global", ry_options.params.k_global, "mass-proportional damping (Leaf eq. 11), Euler only")->capture_default_str();
+  ry->add_option("--k-dt", ry_options.params.k_dt, "tangential contact damping (Leaf eq. 12), Euler only")->capture_default_str();
+  ry->add_option("--k-dn", ry_options.params.k_dn, "normal contact damping (Leaf eq. 12), Euler only")->capture_default_str();
   ry->add_option("--time-step", ry_options.time_step, "Euler's step and FIRE's first step [s] (0: 0.002 for Euler, 0.02 for FIRE)")->capture_default_str();
   ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
   ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");

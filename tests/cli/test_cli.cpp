@@ -221,6 +221,12 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {  // and pattern's chart pic
   expect_refused("relax-yarn " + (dir / "e.bcc").string() + " --ids " + (dir / "b.csv").string(), dir / "b.bcc",
                  "--ids: names each control point's stitch face: give a .skein project");
   EXPECT_FALSE(std::filesystem::exists(dir / "b.csv"));
+  // --rest-lengths: the same yarn in another shape relaxes; a different yarn is refused before any work.
+  ASSERT_EQ(run_skein("relax-yarn " + (dir / "e.bcc").string() + " --rest-lengths " + (dir / "r.bcc").string() + " --max-steps 3 --no-audit -o " +
+                      (dir / "rl.bcc").string()).status, 0);
+  ASSERT_EQ(run_skein("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --tile 2x2 -o " + (dir / "other.bcc").string()).status, 0);
+  expect_refused("relax-yarn " + (dir / "e.bcc").string() + " --rest-lengths " + (dir / "other.bcc").string(), dir / "rl2.bcc",
+                 (dir / "other.bcc").string() + ": ");
   // pattern: a row per control point of the tiling, its faces the tiling's, knit and purl as the rib has them.
   r = run_skein("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --tile 2x3 -o " + (dir / "p.bcc").string() + " --ids " +
                 (dir / "p.csv").string() + " --chart-png " + (dir / "chart.png").string());

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -101,4 +102,40 @@ TEST(WifPattern, BrokenDraftsAreRefusedNamingTheLineAndTheRule) {
 TEST(WifPattern, ADraftTooLargeToWeaveIsRefusedBeforeItIsWoven) {
   EXPECT_EQ(error_in(kHeader + "[WEAVING]\nShafts=2\n[WARP]\nThreads=9000\n[WEFT]\nThreads=9000\n" + straight_threading(2, 2) + "[LIFTPLAN]\n1=1\n"),
             "draft.wif: the draft is 9000 threads x 9000 picks; skein weaves drafts of up to 4000000 cells");
+}
+
+namespace {
+/// The two drawdowns weave the same cloth: tiled to a common size, one equals the other shifted cyclically.
+bool same_cloth(const mesh::Pattern& a, const mesh::Pattern& b) {
+  const auto h = std::lcm(a.over.size(), b.over.size()), w = std::lcm(a.over[0].size(), b.over[0].size());
+  const auto at = [](const mesh::Pattern& p, size_t r, size_t c) { return p.over[r % p.over.size()][c % p.over[0].size()]; };
+  for (size_t dr = 0; dr < h; ++dr)
+    for (size_t dc = 0; dc < w; ++dc) {
+      bool same = true;
+      for (size_t r = 0; r < h && same; ++r)
+        for (size_t c = 0; c < w && same; ++c) same = at(a, r, c) == at(b, r + dr, c + dc);
+      if (same) return true;
+    }
+  return false;
+}
+}  // namespace
+
+TEST(WifPattern, TheCorpusDraftsWeaveTheBundledCloths) {
+  const std::filesystem::path dir(SKEIN_PATTERNS_DIR);
+  for (const auto& [draft, weave] : std::vector<std::pair<std::string, std::string>>{
+           {"plain-weave", "plain-weave"}, {"twill-2-1", "twill-2-1"}, {"basket-2x2", "basket-2x2"}, {"satin-5", "satin-5-2"}}) {
+    SCOPED_TRACE(draft);
+    const auto p = mesh::read_pattern(dir / "wif" / (draft + ".wif"));
+    EXPECT_TRUE(same_cloth(p, mesh::read_pattern(dir / (weave + ".weave")))) << rows_text(p);
+  }
+  // The point draws: goose-eye's diamonds are symmetric about the point thread and the point pick.
+  const auto eye = mesh::read_pattern(dir / "wif" / "goose-eye.wif");
+  ASSERT_EQ(eye.over.size(), 6u);
+  for (size_t r = 0; r < 6; ++r)
+    for (size_t c = 0; c < 6; ++c) EXPECT_EQ(eye.over[r][c], eye.over[(6 - r) % 6][(6 - c) % 6]) << r << " " << c;
+  // Every draft of the corpus reads, with a title.
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "wif")) {
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_FALSE(mesh::read_pattern(entry.path()).name.empty());
+  }
 }

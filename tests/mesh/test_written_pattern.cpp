@@ -301,3 +301,38 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
   EXPECT_NE(error_of([] { mesh::write_chart_pattern(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave")); }).find("woven"),
             std::string::npos);
 }
+
+TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
+  const std::string dir = std::string(SKEIN_PATTERNS_DIR) + "/written/";
+  for (const auto& name : {"garter-rib", "broken-rib", "rib-3x1", "diagonal-rib", "checkerboard", "basketweave", "double-seed", "welt", "rib-2x2", "seed"}) {
+    const auto written = mesh::read_pattern(dir + name + ".txt");
+    EXPECT_TRUE(same_fabric(written, bundled(name))) << name << " read as " << rows_text(written);
+  }
+  // The rest as the stitches a knitter would name: each row's mistake-rib offset, linen stitch's offset slips,
+  // twisted knits, the lace rib's ys, the C6F cable and the 1/1 RT twists.
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "mistake-rib.txt"), mesh::parse_pattern("format knit\nk k p p\nk p p k\n", "m.knit")));
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "linen-stitch.txt"), mesh::parse_pattern("format knit\nk sk\nsk k\n", "l.knit")));
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "twisted-rib.txt"), mesh::parse_pattern("format knit\np x\np k\n", "t.knit")));
+  const auto lace = mesh::read_pattern(dir + "lace-rib.txt");
+  EXPECT_NE(rows_text(lace).find("ys"), std::string::npos) << rows_text(lace);
+  const auto cable = mesh::read_pattern(dir + "cable-6-left.txt");
+  ASSERT_EQ(cable.cables.size(), 1u);
+  EXPECT_EQ(cable.cables[0].over + cable.cables[0].under, 6);
+  EXPECT_EQ(cable.height(), 8);
+  EXPECT_EQ(mesh::read_pattern(dir + "mini-cable-rib.txt").cables.size(), 1u);
+  // The charts of the corpus are their written instructions' fabrics.
+  const std::string charts = std::string(SKEIN_PATTERNS_DIR) + "/charts/";
+  for (const auto& name : {"checkerboard", "garter-rib", "linen-stitch", "diagonal-rib"}) {
+    const auto chart = mesh::read_pattern(charts + name + ".txt"), written = mesh::read_pattern(dir + name + ".txt");
+    EXPECT_TRUE(same_fabric(chart, written)) << name << ": chart " << rows_text(chart) << "written " << rows_text(written);
+  }
+  EXPECT_EQ(mesh::read_pattern(charts + "lace-rib.txt").rows, lace.rows);  // two-loop lace faces: compared as they lie
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(charts + "twisted-stitch-columns.txt"), mesh::parse_pattern("format knit\np x p\n", "t.knit")));
+  // Every file of the corpus reads, named and sourced.
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    SCOPED_TRACE(entry.path().string());
+    const auto p = mesh::read_pattern(entry.path());
+    EXPECT_FALSE(p.name.empty());
+    EXPECT_FALSE(p.note.empty());
+  }
+}
