@@ -128,6 +128,8 @@ TEST(WifPattern, TheCorpusDraftsWeaveTheBundledCloths) {
     const auto p = mesh::read_pattern(dir / "wif" / (draft + ".wif"));
     EXPECT_TRUE(same_cloth(p, mesh::read_pattern(dir / (weave + ".weave")))) << rows_text(p);
   }
+  // A warp-faced 3/1 twill by a lift plan: the warp over three picks, each thread's float a pick later than its neighbour's.
+  EXPECT_EQ(rows_text(mesh::read_pattern(dir / "wif" / "twill-3-1.wif")), "0001\n1000\n0100\n0010\n");
   // The point draws: goose-eye's diamonds are symmetric about the point thread and the point pick.
   const auto eye = mesh::read_pattern(dir / "wif" / "goose-eye.wif");
   ASSERT_EQ(eye.over.size(), 6u);

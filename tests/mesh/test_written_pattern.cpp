@@ -304,13 +304,14 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
 
 TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
   const std::string dir = std::string(SKEIN_PATTERNS_DIR) + "/written/";
-  for (const auto& name : {"garter-rib", "broken-rib", "rib-3x1", "diagonal-rib", "checkerboard", "basketweave", "double-seed", "welt", "rib-2x2", "seed"}) {
+  for (const auto& name : {"garter-rib", "broken-rib", "rib-3x1", "diagonal-rib", "checkerboard", "basketweave", "double-seed", "welt", "rib-2x2", "seed", "rib-1x1", "moss"}) {
     const auto written = mesh::read_pattern(dir + name + ".txt");
     EXPECT_TRUE(same_fabric(written, bundled(name))) << name << " read as " << rows_text(written);
   }
   // The rest as the stitches a knitter would name: each row's mistake-rib offset, linen stitch's offset slips,
   // twisted knits, the lace rib's ys, the C6F cable and the 1/1 RT twists.
   EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "mistake-rib.txt"), mesh::parse_pattern("format knit\nk k p p\nk p p k\n", "m.knit")));
+  EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "farrow-rib.txt"), mesh::parse_pattern("format knit\np k k\np k p\n", "f.knit")));
   EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "linen-stitch.txt"), mesh::parse_pattern("format knit\nk sk\nsk k\n", "l.knit")));
   EXPECT_TRUE(same_fabric(mesh::read_pattern(dir + "twisted-rib.txt"), mesh::parse_pattern("format knit\np x\np k\n", "t.knit")));
   const auto lace = mesh::read_pattern(dir + "lace-rib.txt");
