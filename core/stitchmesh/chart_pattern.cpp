@@ -292,7 +292,9 @@ namespace {
 std::string cells_of_type(const std::string& type) {
   static const std::map<std::string, std::string> cells = {{"k", "."},   {"p", "-"},    {"x", "t"},    {"s", "v"},     {"sk", "w"},
                                                            {"d12k", "/"}, {"d21k", "\\"}, {"d12p", ")"}, {"d21p", "("},
-                                                           {"ys", "o\\"}, {"2u", "/o"},   {"y3y", "o^o"}};
+                                                           {"ys", "o\\"}, {"2u", "/o"},   {"y3y", "o^o"},
+                                                           {"ky", ".o"},  {"yk", "o."},   {"py", "-o"},  {"yp", "o-"},   {"yky", "o.o"}, {"ypy", "o-o"},
+                                                           {"d123k", "{"}, {"d321k", "}"}, {"d123p", "<"}, {"d321p", ">"}};
   const auto it = cells.find(type);
   return it == cells.end() ? "" : it->second;
 }
@@ -300,7 +302,8 @@ std::string cells_of_type(const std::string& type) {
 /// The keys write_chart gives the symbols the Craft Yarn Council's key lacks (or means on right-side rows
 /// only), each with its wrong-side stitch so that a flat chart reads them on either side.
 const std::vector<std::pair<char, std::string>> kWrittenKeys = {
-    {'t', "k1 tbl / p1 tbl"}, {'w', "sl1 wyif / sl1 wyib"}, {')', "p2tog / k2tog"}, {'(', "ssp / ssk"}};
+    {'t', "k1 tbl / p1 tbl"}, {'w', "sl1 wyif / sl1 wyib"}, {')', "p2tog / k2tog"}, {'(', "ssp / ssk"},
+    {'{', "k3tog / p3tog"},   {'}', "sssk / sssp"},         {'<', "p3tog / k3tog"}, {'>', "sssp / sssk"}};
 
 /// A cable as the written reader names it: CnB / CnF half over half, else A/B RC or A/B LC.
 std::string cable_abbreviation(const PatternCable& c) {

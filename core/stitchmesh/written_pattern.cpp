@@ -57,9 +57,9 @@ Item make(Item::Kind kind, const std::string& written, int column, const std::st
 }
 
 // The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
-const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
+const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
                               "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
-const char* const kNotModelled[] = {"kfb", "pfb", "m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "k3tog", "p3tog", "sssk", "sssp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
+const char* const kNotModelled[] = {"kfb", "pfb", "m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
 
 int edit_distance(const std::string& a, const std::string& b) {
   std::vector<int> row(b.size() + 1);
@@ -90,10 +90,16 @@ const std::string kCentred = "centred double decrease";
 
 /// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over beside the decrease that pays for it, on
 /// a right-side row: "yo, ssk" or "ssk, yo" is `ys`, "k2tog, yo" or "yo, k2tog" is `2u`, "yo, sk2p, yo" is `y3y`.
-/// A yarn-over with no decrease beside it is an increase, which has no model yet: an error.
+/// A yarn-over with no decrease beside it is an increase (Yuksel 2012 Table 1's increase faces): it joins the
+/// plain stitch worked before it, or else the one after, into one face that takes that stitch's loop and makes
+/// two, named as seen from the front (a right-side row is worked right to left): "k1, yo" is `yk`, "yo, k1" `ky`,
+/// the same with purls `yp`, `py`; "yo, k1, yo" with no plain stitch after it is `yky` (`ypy`). Which neighbour
+/// a yarn-over joins changes how the stitch mesh groups the loops, not the loops. Its decreases may lie anywhere in the row
+/// (feather and fan); the stitch mesh checks that each row makes as many loops as the next one takes.
 void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
   std::vector<Item> out;
   const auto is = [&](size_t i, const char* written) { return i < items.size() && items[i].written == written; };
+  const auto plain = [](const Item& item) { return item.kind == Item::Stitch && (item.type == "k" || item.type == "p"); };
   for (size_t i = 0; i < items.size(); ++i) {
     Item item = items[i];
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
@@ -108,10 +114,22 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
       item.type = "2u";
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
+    } else if (is(i, "yo") && !out.empty() && plain(out.back())) {
+      out.back().type = "y" + out.back().type;  // worked before the yarn-over: on its right seen from the front
+      out.back().written += ", yo";
+      continue;
+    } else if (is(i, "yo") && i + 1 < items.size() && plain(items[i + 1])) {
+      item.type = items[i + 1].type + "y";  // worked after it: on its left
+      item.written = "yo, " + items[i + 1].written;
+      ++i;
+    } else if (is(i, "yo") && !out.empty() && out.back().type.size() == 2 && out.back().type[1] == 'y' && out.back().written.rfind("yo, ", 0) == 0) {
+      out.back().type = "y" + out.back().type;  // "yo, k1, yo" with nothing plain after it: one loop into three
+      out.back().written += ", yo";
+      continue;
     } else if (is(i, "yo")) {
       throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
-                  "a yarn-over has a stitch model only beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...): a lone yarn-over "
-                  "is an increase, and increases have no model yet");
+                  "a yarn-over has a stitch model beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...) or beside a plain knit or "
+                  "purl stitch it increases into ('k1, yo', 'yo, p1'); here it has neither");
     } else if (item.type == kCentred) {
       throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
                   "'" + item.written + "' has a stitch model only between two yarn-overs ('yo, " + item.written + ", yo', Leaf's y3y)");
@@ -172,7 +190,10 @@ private:
     const char* wrong_side;
   };
   const Decrease* decrease(std::smatch& m) {
-    static const Decrease kDecreases[] = {{"k2tog", "d12k", "d12p"}, {"p2tog", "d12p", "d12k"}, {"ssk", "d21k", "d21p"}, {"ssp", "d21p", "d21k"}};
+    // Three into one stack as two do: k3tog's leftmost loop lies on top (d123), sssk's rightmost (d321).
+    static const Decrease kDecreases[] = {{"k2tog", "d12k", "d12p"}, {"p2tog", "d12p", "d12k"}, {"ssk", "d21k", "d21p"}, {"ssp", "d21p", "d21k"},
+                                          {"k3tog", "d123k", "d123p"}, {"p3tog", "d123p", "d123k"}, {"sssk", "d321k", "d321p"},
+                                          {"sssp", "d321p", "d321k"}};
     for (const auto& d : kDecreases)
       if (match(d.written, m)) return &d;
     return nullptr;
