@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The gallery of bundled patterns (docs/pattern-gallery.md): every pattern's periodic patch relaxed, tiled to
-# about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/; then the fabrics
+# about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/; then the corpus in
+# designers' notation (patterns/written, charts, wif) the same way into docs/images/corpus/; then the fabrics
 # issue 24 asks to see side by side relaxed by today's defaults and drawn front, back and three-quarter
-# (--views three) into docs/images/fabrics/. Run after scripts/build.sh; takes about twelve minutes on 2 cores.
+# (--views three) into docs/images/fabrics/. Run after scripts/build.sh; about ten minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 skein=build/bin/skein
@@ -22,20 +23,42 @@ page=docs/pattern-gallery.md
   echo "| pattern | repeat | steps | picture |"
   echo "| --- | --- | --- | --- |"
 } >"$page"
-for f in patterns/*.knit patterns/*.weave; do
-  name=$(basename "$f"); name=${name%.*}
+# picture FILE FOLDER [PREFIX]: the file's periodic patch relaxed, tiled to about 12 x 12 and drawn into FOLDER as
+# PREFIX + its name (.png), and its table row.
+picture() {
+  local f=$1 folder=$2 name tile
+  name=$(basename "$f"); name=${3:-}${name%.*}
   "$skein" -q pattern "$f" -o "$tmp/out.bcc" --tile 1x1 --report "$tmp/size.json"
   tile=$(python3 -c "import json, math; w, h = json.load(open('$tmp/size.json'))['repeat']; print(f'{math.ceil(12 / w)}x{math.ceil(12 / h)}')")
-  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" --tile "$tile" --preview-png "$images/$name.png" \
-    --views front --png-size 360
-  python3 - "$f" "$tmp/r.json" "$name" >>"$page" <<'PY'
+  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" --tile "$tile" \
+    --preview-png "docs/$folder/$name.png" --views front --png-size 360
+  python3 - "$f" "$tmp/r.json" "$name" "$folder" >>"$page" <<'PY'
 import json, sys
-f, report, name = sys.argv[1:]
+f, report, name, folder = sys.argv[1:]
 r = json.load(open(report))
-source = next((l.split(":", 1)[1].strip() for l in open(f) if l.startswith("# source:")), "")
-title = next((l.split(":", 1)[1].strip() for l in open(f) if l.startswith("# name:")), name)
-print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}](images/patterns/{name}.png) |")
+comments = [l[1:].strip() for l in open(f) if l.startswith(("#", ";"))]
+source = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("source:")), "")
+title = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("name:")), r.get("pattern", name))
+if f.endswith(".wif"):  # a WIF draft says what it is in its leading comment and its title
+    title = next((l.split("=", 1)[1].strip() for l in open(f) if l.startswith("Title=")), name)
+    source = " ".join(l for l in comments)
+print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}]({folder}/{name}.png) |")
 PY
+}
+for f in patterns/*.knit patterns/*.weave; do picture "$f" images/patterns; done
+{
+  echo
+  echo "## Patterns as designers write them (issue 26)"
+  echo
+  echo "The corpus of written instructions, charts and WIF drafts (\`patterns/written/\`, \`patterns/charts/\`,"
+  echo "\`patterns/wif/\`; patterns/FORMAT.md), each read by skein, relaxed and drawn as above."
+  echo
+  echo "| pattern | repeat | steps | picture |"
+  echo "| --- | --- | --- | --- |"
+} >>"$page"
+mkdir -p docs/images/corpus
+for f in patterns/written/*.txt patterns/charts/*.txt patterns/wif/*.wif; do
+  picture "$f" images/corpus "$(basename "$(dirname "$f")")-"  # written-seed, charts-seed: one name each
 done
 {
   echo
