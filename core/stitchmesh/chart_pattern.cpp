@@ -320,7 +320,7 @@ std::string chart_text(const Pattern& pattern, bool round) {
       const std::string cells = cells_of_type(type);
       if (cells.empty())
         throw Error("", "row " + std::to_string(r + 1) + ", stitch " + std::to_string(f + 1),
-                    "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, slips, the four decreases, Leaf's yo pairs and cables)");
+                    "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, slips, two- and three-into-one decreases, yarn-overs beside a knit or purl, Leaf's yo pairs and cables)");
       grid[r] += cells;
       used.insert(cells.begin(), cells.end());
     }

@@ -128,13 +128,16 @@ TEST(WifPattern, TheCorpusDraftsWeaveTheBundledCloths) {
     const auto p = mesh::read_pattern(dir / "wif" / (draft + ".wif"));
     EXPECT_TRUE(same_cloth(p, mesh::read_pattern(dir / (weave + ".weave")))) << rows_text(p);
   }
-  // A warp-faced 3/1 twill by a lift plan: the warp over three picks, each thread's float a pick later than its neighbour's.
-  EXPECT_EQ(rows_text(mesh::read_pattern(dir / "wif" / "twill-3-1.wif")), "0001\n1000\n0100\n0010\n");
-  // The point draws: goose-eye's diamonds are symmetric about the point thread and the point pick.
-  const auto eye = mesh::read_pattern(dir / "wif" / "goose-eye.wif");
-  ASSERT_EQ(eye.over.size(), 6u);
-  for (size_t r = 0; r < 6; ++r)
-    for (size_t c = 0; c < 6; ++c) EXPECT_EQ(eye.over[r][c], eye.over[(6 - r) % 6][(6 - c) % 6]) << r << " " << c;
+  // A 3/1 twill by a lift plan: each weft over three warps, the warp it passes under one further each pick.
+  EXPECT_EQ(rows_text(mesh::read_pattern(dir / "wif" / "twill-3-1.wif")), "0111\n1011\n1101\n1110\n");
+  // The point draws: goose-eye's nested diamonds are symmetric about the point thread and the point pick, and
+  // larger than bird's eye's.
+  const auto goose = mesh::read_pattern(dir / "wif" / "goose-eye.wif");
+  ASSERT_EQ(goose.over.size(), 14u);
+  ASSERT_EQ(goose.over[0].size(), 14u);
+  for (size_t r = 0; r < 14; ++r)
+    for (size_t c = 0; c < 14; ++c) EXPECT_EQ(goose.over[r][c], goose.over[(14 - r) % 14][(14 - c) % 14]) << r << " " << c;
+  EXPECT_FALSE(same_cloth(goose, mesh::read_pattern(dir / "wif" / "bird-eye.wif")));
   // Every draft of the corpus reads, with a title.
   for (const auto& entry : std::filesystem::directory_iterator(dir / "wif")) {
     SCOPED_TRACE(entry.path().string());
