@@ -37,11 +37,9 @@ import json, sys
 f, report, name, folder = sys.argv[1:]
 r = json.load(open(report))
 comments = [l[1:].strip() for l in open(f) if l.startswith(("#", ";"))]
-source = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("source:")), "")
-title = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("name:")), r.get("pattern", name))
-if f.endswith(".wif"):  # a WIF draft says what it is in its leading comment and its title
-    title = next((l.split("=", 1)[1].strip() for l in open(f) if l.startswith("Title=")), name)
-    source = " ".join(l for l in comments)
+# A WIF draft has no "# name:" or "# source:": its title is the pattern's name, its leading comment the source.
+title = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("name:")), r["pattern"])
+source = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("source:")), " ".join(comments) if f.endswith(".wif") else "")
 print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}]({folder}/{name}.png) |")
 PY
 }

@@ -122,7 +122,7 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
       item.type = items[i + 1].type + "y";  // worked after it: on its left
       item.written = "yo, " + items[i + 1].written;
       ++i;
-    } else if (is(i, "yo") && !out.empty() && out.back().type.size() == 2 && out.back().type[1] == 'y' && out.back().written.rfind("yo, ", 0) == 0) {
+    } else if (is(i, "yo") && !out.empty() && (out.back().type == "ky" || out.back().type == "py")) {  // made just above from "yo, k1"
       out.back().type = "y" + out.back().type;  // "yo, k1, yo" with nothing plain after it: one loop into three
       out.back().written += ", yo";
       continue;
