@@ -232,7 +232,7 @@ int run_command_line(int argc, char** argv) {
   ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
   FabricChoice ry_fabric;
-  add_fabric(ry, ry_fabric, "sets the yarn radius for a project", false);
+  add_fabric(ry, ry_fabric, "a project's yarn, relaxed at its compressed contact radius with each stitch cut to Munden's loop length (docs/yarn.md)", false);
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
   ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
   ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
@@ -662,6 +662,7 @@ int run_command_line(int argc, char** argv) {
     if (*ry) {
       for (const auto& p : {ry_out, ry_report, ry_log, ry_png, ry_checkpoint})
         if (!p.empty()) check_writable(p);
+      bool ry_take_up_given = ry->count("--take-up") > 0;
       if (is_project(ry_in) && std::filesystem::exists(ry_in)) {
         // The yarn settings the app saved with the project stand where the command line gives none.
         const auto project = mesh::read_project(ry_in);
@@ -675,7 +676,7 @@ int run_command_line(int argc, char** argv) {
           take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
           take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
           take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
-          take("--take-up", [&] { ry_take_up = saved.take_up; });
+          take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
           take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
           take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
           take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
@@ -687,9 +688,13 @@ int run_command_line(int argc, char** argv) {
           spdlog::info("{} carries yarn settings (saved by the app): using them for {}", ry_in, list);
         }
       }
+      double ry_radius_out = 0;  // a yarn weight's yarn: relaxed at its compressed contact radius, written at its full one
       if (const auto fabric = resolve_fabric(ry_fabric, false, ry->count("--yarn-radius") > 0); fabric.radius) {
         if (is_bcc(ry_in)) throw Error("", "--yarn", "sets the radius of yarn emitted from a project; a .bcc keeps its own");
-        ry_radius = *fabric.radius;
+        if (ry_stand_in || !ry_warm.empty())
+          throw Error("", "--yarn", "relaxes a whole garment at the weight's compressed contact radius, not --stand-in or --warm-start (give --yarn-radius)");
+        ry_radius_out = *fabric.radius;
+        ry_radius = mesh::kYarnCompression * ry_radius_out;
       }
       ry_options.method = relax::parse_yarn_method(ry_method);
       ry_options.clipped_scale = ry_stop_scale == "clipped";
@@ -810,12 +815,32 @@ int run_command_line(int argc, char** argv) {
         if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
         return 0;
       }
-      const auto system =
-          ry_rest_lengths.empty()
-              ? relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling)
-              : relax::with_rest_lengths_of(relax::make_yarn_system(relax::read_bcc(ry_rest_lengths), ry_take_up,
-                                                                    parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling),
-                                            yarn, ry_rest_lengths);
+      const auto make_system = [&](double take_up) {
+        const auto by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
+        return ry_rest_lengths.empty()
+                   ? relax::make_yarn_system(yarn, take_up, by_type, ry_options.sampling)
+                   : relax::with_rest_lengths_of(relax::make_yarn_system(relax::read_bcc(ry_rest_lengths), take_up, by_type, ry_options.sampling),
+                                                 yarn, ry_rest_lengths);
+      };
+      auto system = make_system(ry_take_up);
+      json ry_extra = json::object();
+      if (ry_radius_out > 0) {
+        // A yarn weight's garment, as `skein pattern --yarn` relaxes a repeat (docs/yarn.md): contact at the compressed
+        // radius and, unless a take-up is given, each stitch's yarn cut (or let out) to Munden's loop length for the
+        // project's stitch width.
+        const double munden = mesh::gauge_of(mesh::read_project(ry_in).stitch_size).loop_length();
+        const int stitches = static_cast<int>(ids_mesh->faces.size());
+        ry_extra["fabric"] = {{"yarn", ry_fabric.yarn}, {"radius_mm", ry_radius_out}, {"contact_radius_mm", ry_radius}, {"munden_loop_length_mm", munden}};
+        if (!ry_take_up_given) {
+          ry_take_up *= take_up_to_munden(garment_loop_length(system, stitches), munden, ry_in, "--yarn " + ry_fabric.yarn);
+          system = make_system(ry_take_up);
+          ry_extra["fabric"]["take_up_to_munden"] = ry_take_up;
+        }
+        const double loop = garment_loop_length(system, stitches);
+        ry_extra["fabric"]["yarn_per_stitch_mm"] = loop;
+        spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f}: {:.2f} mm a stitch (Munden's loop length {:.2f} mm)",
+                     ry_fabric.yarn, ry_radius, mesh::kYarnCompression, ry_radius_out, ry_take_up, loop, munden);
+      }
       spdlog::info("{} yarns, {} control points, {} segments, r = {:.3g} mm, up to {} contact samples per segment; {} boundary loops, {} patches ({:.2f} s)",
                    system.num_curves(), system.num_points(), system.num_segments(), system.radius, *std::max_element(system.contact_samples.begin(), system.contact_samples.end()),
                    targets.boundary_loops.size(), targets.patches.size(), t.seconds());
@@ -826,7 +851,8 @@ int run_command_line(int argc, char** argv) {
       }
       ry_options.interrupt = install_interrupt_handlers();
       const json report = relax_and_write(yarn, system, targets, ry_options, state,
-                                          {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr))});
+                                          {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr)),
+                                           ry_extra, 900, render::YarnColor::StitchType, 1, ry_radius_out});
       if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
       return exit_status(report);
     }
@@ -959,9 +985,7 @@ int run_command_line(int argc, char** argv) {
           pat_extra["fabric"]["contact_radius_mm"] = sim_radius / pat_gamma;
           if (!targets.periodic.empty() && pat->count("--take-up") == 0 && pat_extra["fabric"].contains("munden_loop_length_mm")) {
             const double loop = patch_loop_length(system, targets.periodic, {pattern.width(), pattern.height()}) / pat_gamma;
-            pat_take_up = pat_extra["fabric"]["munden_loop_length_mm"].get<double>() / loop;
-            if (!(pat_take_up > 0.1 && pat_take_up < 2))
-              throw Error(pat_in, "--yarn " + pat_fabric.yarn, "the take-up to Munden's loop length would be " + std::to_string(pat_take_up) + "; give --take-up");
+            pat_take_up = take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
             system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
             pat_extra["fabric"]["take_up_to_munden"] = pat_take_up;
             spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f} to Munden's loop length {:.2f} mm", pat_fabric.yarn,

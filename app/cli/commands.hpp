@@ -146,6 +146,13 @@ struct YarnRunOutputs {
 /// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
 double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat);
 
+/// A garment's yarn per stitch: all its rest lengths over its stitch faces (borders included); Munden's l for a
+/// whole garment, as patch_loop_length is for a repeat.
+double garment_loop_length(const relax::YarnSystem& system, int stitches);
+/// The take-up that cuts (or lets out) yarn of `loop` mm per stitch to Munden's loop length `munden` for the gauge
+/// (a yarn weight's fabric, docs/yarn.md); throws skein::Error naming `file` and `option` outside 0.1 to 2.
+double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option);
+
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
 /// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes
 /// only its report (its checkpoint holds the state). Returns the report, with the residual history.

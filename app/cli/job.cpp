@@ -155,9 +155,10 @@ Job parse_job(const std::string& text, const fs::path& file) {
         yarn.fail(yarn.name("weight"), e.rule());
       }
       job.yarn_radius = weight->diameter() / 2;
+      job.yarn_weight = weight->name;
       if (!k.has("stitch_size") && !k.has("gauge")) job.stitch_size = mesh::standard_gauge(*weight).stitch_size();
     }
-    job.take_up = yarn.number("take_up", 1, 0.1, 10);
+    if (yarn.has("take_up")) job.take_up = yarn.number("take_up", 1, 0.1, 10);
   }
   if (const json y = stage("relax_yarn"); !y.is_null()) job.relax_yarn = yarn_options(Keys(y, "relax_yarn", file), job.backend);
   job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();
@@ -313,12 +314,16 @@ int run_job(const Job& job, bool resume, bool progress) {
     run.stage("emit yarn", [&] {
       mesh::EmitOptions options;
       options.yarn_radius = job.yarn_radius > 0 ? job.yarn_radius : 0.1 * job.stitch_size.width;
+      // A yarn weight's yarn is relaxed at its compressed contact radius and written at its full one (docs/yarn.md).
+      if (!job.yarn_weight.empty()) options.yarn_radius *= mesh::kYarnCompression;
       mesh::EmitReport emitted;
       yarn = mesh::emit_yarn(*project.stitch, mesh::StitchLibrary::bundled(), options, &emitted);
       check_space(job.output, static_cast<long>(yarn.points.size()));
-      write_yarn(yarn, run.out("yarn.bcc"));
-      run.report()["yarn"] = yarn_json(yarn);
-      if (job.pictures) render_yarn_tubes(yarn, run.out("yarn.png"), render::YarnColor::StitchType);
+      auto written = yarn;
+      if (!job.yarn_weight.empty()) written.radius = job.yarn_radius;
+      write_yarn(written, run.out("yarn.bcc"));
+      run.report()["yarn"] = yarn_json(written);
+      if (job.pictures) render_yarn_tubes(written, run.out("yarn.png"), render::YarnColor::StitchType);
     });
     if (!job.relax_yarn) {
       run.finish("done");
@@ -329,7 +334,21 @@ int run_job(const Job& job, bool resume, bool progress) {
       auto options = *job.relax_yarn;
       options.interrupt = interrupt;
       options.checkpoint = checkpoint;
-      const auto system = relax::make_yarn_system(yarn, job.take_up, {}, options.sampling);
+      auto system = relax::make_yarn_system(yarn, job.take_up.value_or(1), {}, options.sampling);
+      if (!job.yarn_weight.empty()) {
+        // As `skein relax-yarn --yarn`: unless the job gives a take-up, each stitch's yarn cut (or let out) to
+        // Munden's loop length for the project's stitch width.
+        const double munden = mesh::gauge_of(project.stitch_size).loop_length();
+        const int stitches = static_cast<int>(project.stitch->faces.size());
+        json fabric = {{"yarn", job.yarn_weight}, {"radius_mm", job.yarn_radius}, {"contact_radius_mm", yarn.radius}, {"munden_loop_length_mm", munden}};
+        if (!job.take_up) {
+          const double take_up = take_up_to_munden(garment_loop_length(system, stitches), munden, job.file.string(), "key 'yarn.weight'");
+          system = relax::make_yarn_system(yarn, take_up, {}, options.sampling);
+          fabric["take_up_to_munden"] = take_up;
+        }
+        fabric["yarn_per_stitch_mm"] = garment_loop_length(system, stitches);
+        run.report()["fabric"] = fabric;
+      }
       const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);
       auto state = relax::initial_state(system, options);
       if (std::error_code ec; resume && fs::exists(checkpoint, ec)) {
@@ -346,6 +365,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       outputs.png = job.pictures ? run.out("yarn-relaxed.png") : "";
       outputs.views = "garment";
       outputs.progress = progress;
+      if (!job.yarn_weight.empty()) outputs.radius_out = job.yarn_radius;
       run.report()["relax_yarn"] = relax_and_write(yarn, system, targets, options, state, outputs);
       status = exit_status(run.report()["relax_yarn"]);
     });

@@ -32,7 +32,8 @@ struct Job {
   std::vector<JobEdit> edits;
   std::optional<relax::MeshRelaxOptions> relax_mesh;  ///< none: skipped
   double yarn_radius = 0;        ///< [mm]; 0: a tenth of the stitch width
-  double take_up = 1;
+  std::string yarn_weight;       ///< a weight class: relaxed at its compressed contact radius (docs/yarn.md); empty: none
+  std::optional<double> take_up;  ///< none: 1, or with a yarn weight Munden's loop length
   std::optional<relax::YarnRelaxOptions> relax_yarn;  ///< none: skipped
   std::string backend = "auto";
   std::filesystem::path output;  ///< the folder every output goes to

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "relax/yarn_io.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "testing.hpp"
 
 using skein::testing::ScratchDir;
@@ -754,6 +755,40 @@ TEST(Job, KilledThenResumedEndsAsAnUninterruptedRun) {
   ASSERT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming the yarn from"), std::string::npos) << resumed.output;
   EXPECT_EQ(slurp(dir / "killed" / "yarn-relaxed.bcc"), slurp(dir / "whole" / "yarn-relaxed.bcc"));
+}
+
+TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) {
+  // Issue 24: as `skein pattern --yarn` relaxes a repeat, a garment of a yarn weight is emitted and relaxed at
+  // kYarnCompression of the weight's radius, each stitch's yarn cut to Munden's loop length for the project's
+  // stitch width (Kw w), and written at the weight's full radius; both `relax-yarn --yarn` and a job's yarn.weight.
+  ScratchDir dir;
+  const double full = 25.4 / 13 / 2, munden = skein::mesh::kMundenKw * 12;  // dk; the job's 12 mm stitches
+  const auto job = dir.write("job.json", swatch_job(R"(, "yarn": {"weight": "dk"})", 10));
+  auto r = run_skein("-q run " + job.string() + " -o " + (dir / "job").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "job" / "report.json"));
+  const auto& fabric = report.at("fabric");
+  EXPECT_NEAR(fabric.at("contact_radius_mm").get<double>(), skein::mesh::kYarnCompression * full, 1e-9);
+  EXPECT_NEAR(fabric.at("munden_loop_length_mm").get<double>(), munden, 1e-9);
+  EXPECT_NEAR(fabric.at("yarn_per_stitch_mm").get<double>(), munden, 1e-6 * munden);
+  const double to_munden = fabric.at("take_up_to_munden").get<double>();
+  EXPECT_GT(std::abs(to_munden - 1), 0.05) << "the emitted loops are Munden's already: the test shows nothing";
+  for (const char* file : {"yarn.bcc", "yarn-relaxed.bcc"}) EXPECT_NEAR(skein::relax::read_bcc(dir / "job" / file).radius, full, 1e-9) << file;
+  // The same through relax-yarn on the job's project; a take-up given is kept.
+  const auto project = (dir / "job" / "relaxed.skein").string();
+  r = run_skein("relax-yarn " + project + " --yarn dk --max-steps 0 --no-audit -o " + (dir / "r.bcc").string() + " --report " + (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto relaxed = nlohmann::json::parse(slurp(dir / "r.json"));
+  EXPECT_NEAR(relaxed.at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
+  EXPECT_NEAR(skein::relax::read_bcc(dir / "r.bcc").radius, full, 1e-9);
+  r = run_skein("relax-yarn " + project + " --yarn dk --take-up 0.95 --max-steps 0 --no-audit -o " + (dir / "t.bcc").string() + " --report " +
+                (dir / "t.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  relaxed = nlohmann::json::parse(slurp(dir / "t.json"));
+  EXPECT_FALSE(relaxed.at("fabric").contains("take_up_to_munden"));
+  EXPECT_NEAR(relaxed.at("fabric").at("yarn_per_stitch_mm").get<double>(), 0.95 * munden / to_munden, 1e-6 * munden);
+  // Refused where a weight's compressed contact cannot hold: a preview that keeps the emitted radius.
+  expect_refused("relax-yarn " + project + " --yarn dk --stand-in", dir / "s.bcc", "--yarn: relaxes a whole garment");
 }
 
 TEST(Job, SigtermLeavesACheckpointToResumeFrom) {
