@@ -238,7 +238,7 @@ int main(int argc, char** argv) {
                           {{Action::Knit, 0, true}}));
   models.push_back(slip("s", "slip: the loop below passes to the next row unworked, the yarn floats behind it", -1));
   models.push_back(slip("sk", "slip with the yarn in front: the loop below passes unworked, the yarn floats in front", 1));
-  for (const char* inc : {"kp", "ky", "yk", "py", "yp", "kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}) {
+  for (const char* inc : {"kp", "pk", "ky", "yk", "py", "yp", "kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}) {
     std::vector<Loop> loops;
     for (const char* c = inc; *c; ++c) loops.push_back({action_of(*c)});
     models.push_back(stitch(inc, std::string("increase: ") + inc + " worked into one loop below, left to right " + table1, 1, loops));

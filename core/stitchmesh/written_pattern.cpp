@@ -203,6 +203,26 @@ private:
     for (int i = 0; i < count; ++i) items.push_back(item);
   }
 
+  /// "(k1, p1) in next st", "[k1, yo, k1] into the same stitch": two or three stitches worked into one loop below,
+  /// an increase face (Yuksel 2012 Table 1) named as seen from the front: a right-side row is worked right to left,
+  /// so "(p1, k1) in next st" is `kp` there and "(k1, p1) in next st" is `pk`; a wrong-side row left to right, its
+  /// knits purls.
+  Item worked_into_one(const Item& group, size_t at) {
+    std::string type, written;
+    for (const auto& item : group.items) {
+      const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpy").find(item.type) != std::string::npos &&
+                          (item.written == "yo" || item.written.size() <= 2);
+      if (!single) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
+      type += item.type;
+      written += (written.empty() ? "" : ", ") + item.written;
+    }
+    if (m_rs) std::reverse(type.begin(), type.end());
+    if (group.items.size() < 2 || group.items.size() > 3 || !find_stitch_type(type))
+      fail(at, "'(" + written + ") in next st' has no stitch model: two or three stitches into one are read as skein's increase faces "
+               "(kp, pk, kpk, pkp, kyk, pyp, ...; seen from the front), and this one would be '" + type + "'");
+    return make(Item::Stitch, "(" + written + ") in next st", static_cast<int>(at) + m_offset + 1, type);
+  }
+
   std::vector<Item> sequence(bool in_group) {
     std::vector<Item> items;
     for (;;) {
@@ -225,6 +245,11 @@ private:
         g.items = sequence(true);
         skip_separators();
         std::smatch times;
+        if (match(R"((?:all\s+)?in(?:to)?\s+(?:the\s+)?(?:next|same)\s+(?:st|stitch)\b)", times)) {
+          m_pos += static_cast<size_t>(times.length(0));
+          items.push_back(worked_into_one(g, at));
+          continue;
+        }
         if (match(R"(\s*(?:x\s*(\d+)|(\d+)\s*(?:times|x)))", times)) {
           m_pos += static_cast<size_t>(times.length(0));
           g.times = count_of(times[1].matched ? times[1].str() : times[2].str());
@@ -304,7 +329,8 @@ private:
           ++end;
         const std::string word = m_text.substr(m_pos, end - m_pos);
         if (std::find(std::begin(kNotModelled), std::end(kNotModelled), word) != std::end(kNotModelled))
-          fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet");
+          fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet" +
+                       std::string(word == "kfb" || word == "pfb" ? "; the nearest increase into one stitch is '(k1, p1) in next st'" : ""));
         fail(at, "unknown abbreviation '" + word + "'; did you mean " + suggestions(word) + "? (patterns/FORMAT.md lists what is read)");
       }
     }

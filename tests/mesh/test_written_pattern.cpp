@@ -145,7 +145,7 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
             "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'p', 'yo'? (patterns/FORMAT.md lists what is read)");
-  EXPECT_EQ(error("Row 1: k2, kfb, k2.\n"), "p.txt: line 1, column 12: 'kfb' is a knitting abbreviation skein has no stitch model for yet");
+  EXPECT_EQ(error("Row 1: k2, kfb, k2.\n"), "p.txt: line 1, column 12: 'kfb' is a knitting abbreviation skein has no stitch model for yet; the nearest increase into one stitch is '(k1, p1) in next st'");
   EXPECT_EQ(error("Row 1: knit.\nRow 3: purl.\n"), "p.txt: line 2: row 3 comes where row 2 was expected (rows are numbered from 1, in order)");
   EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
   EXPECT_EQ(error("Row 1: [k1, p1].\n"), "p.txt: line 1, column 17: expected how many times the group is worked after it ('3 times' or 'x3')");
@@ -326,6 +326,9 @@ TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
   EXPECT_EQ(cable.cables[0].over + cable.cables[0].under, 6);
   EXPECT_EQ(cable.height(), 8);
   EXPECT_EQ(mesh::read_pattern(dir + "mini-cable-rib.txt").cables.size(), 1u);
+  // Trinity stitch: on its wrong-side rows "(k1, p1, k1) in next st, p3tog", three from one beside three into one,
+  // a purl row between (seen from the front: pkp and d123k on a purl ground), the clusters offset by two.
+  EXPECT_EQ(rows_text(mesh::read_pattern(dir + "trinity.txt")), "p p p p / pkp d123k / p p p p / d123k pkp / ");
   // The charts of the corpus are their written instructions' fabrics.
   const std::string charts = std::string(SKEIN_PATTERNS_DIR) + "/charts/";
   for (const auto& name : {"checkerboard", "garter-rib", "linen-stitch", "diagonal-rib"}) {
@@ -341,6 +344,29 @@ TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
     EXPECT_FALSE(p.name.empty());
     EXPECT_FALSE(p.note.empty());
   }
+}
+
+TEST(WrittenPattern, StitchesWorkedIntoOneAreIncreaseFaces) {
+  // "(k1, p1) in next st" and its kin: one loop below, two or three made, named as seen from the front (a
+  // right-side row is worked right to left, a wrong-side row left to right with its knits purls from the front).
+  const auto rows_of = [](const std::string& rs, const std::string& ws = "Purl.") {
+    return rows_text(mesh::parse_pattern("Row 1 (RS): " + rs + "\nRow 2: " + ws + "\n", "a.txt"));
+  };
+  EXPECT_EQ(rows_of("K2tog, (k1, p1) in next st."), "pk d12k / k k k / ");
+  EXPECT_EQ(rows_of("K2tog, [p1, k1] into the next stitch."), "kp d12k / k k k / ");
+  EXPECT_EQ(rows_of("K3tog, (k1, p1, k1) all in next st."), "kpk d123k / k k k k / ");
+  EXPECT_EQ(rows_of("Sssk, (k1, yo, k1) in same st."), "kyk d321k / k k k k / ");
+  EXPECT_EQ(rows_of("Knit.", "P2tog, (k1, p1) in next st."), "k k k / d12k pk / ");  // wrong side: worked left to right, k1 a purl from the front
+  EXPECT_EQ(rows_of("K4.", "(P1, k1, p1) in next st, p3tog."), "k k k k / kpk d123k / ");
+  // What has no model is refused, naming the place and the face it would be.
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): K3tog, (k1, p1, k1, p1) in next st.\nRow 2: Purl.\n", "e.txt"); }),
+            "e.txt: line 1, column 20: '(k1, p1, k1, p1) in next st' has no stitch model: two or three stitches into one are read as skein's "
+            "increase faces (kp, pk, kpk, pkp, kyk, pyp, ...; seen from the front), and this one would be 'pkpk'");
+  EXPECT_NE(error_of([] { mesh::parse_pattern("Row 1 (RS): K1, (k1, k2tog) in next st.\nRow 2: Purl.\n", "e.txt"); })
+                .find("column 22: 'k2tog': a group worked into one stitch holds single knits, purls and yarn-overs"),
+            std::string::npos);
+  // Without "in next st" a group is still a repeat and needs its count.
+  EXPECT_NE(error_of([] { mesh::parse_pattern("Row 1 (RS): (k1, p1).\nRow 2: Purl.\n", "e.txt"); }).find("expected how many times"), std::string::npos);
 }
 
 TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
