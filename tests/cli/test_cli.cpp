@@ -863,6 +863,26 @@ TEST(Cli, AuditWithTheStitchIdsNamesTheStitchesOfEachCrossing) {
   EXPECT_NE(r.output.find("t.csv"), std::string::npos) << r.output;
 }
 
+TEST(Cli, DoylesStitchDensityIsTheLoopLengthsWhateverTheYarn) {
+  // Issue 24 (Doyle 1953): relaxed plain knit's stitches per length follow the loop length, not the yarn. At dk's
+  // gauge (one loop length, Munden's 17.8 mm) fingering and worsted (contact diameters 0.57 and 1.17 mm: l/d 31
+  // and 15) give stitch densities within 10 % (measured 21.19 and 20.60 in 10 cm; docs/BENCHMARKS.md).
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  std::array<double, 2> stitches{};
+  for (int i = 0; i < 2; ++i) {
+    const std::string yarn = i == 0 ? "fingering" : "worsted", report = (dir / (yarn + ".json")).string();
+    const auto r = run_skein("-q pattern " + patterns + "/stockinette.knit --yarn " + yarn + " --gauge 22.5 --relax --free-period --no-audit -o " +
+                             (dir / "s.bcc").string() + " --report " + report);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto json = nlohmann::json::parse(slurp(report));
+    ASSERT_TRUE(json.at("converged").get<bool>()) << yarn;
+    EXPECT_NEAR(json.at("free_period").at("loop_length_mm").get<double>(), skein::mesh::kMundenKw * 100 / 22.5, 1e-6) << yarn;
+    stitches[i] = json.at("free_period").at("gauge_per_10cm").at("stitches").get<double>();
+  }
+  EXPECT_NEAR(stitches[1] / stitches[0], 1.0, 0.1) << stitches[0] << " and " << stitches[1] << " stitches in 10 cm";
+}
+
 TEST(Cli, AYarnWeightRelaxesToItsGaugeAtItsCompressedContactAndMundensLoopLength) {
   // Issue 24: relaxed as a yarn weight's fabric (contact at kYarnCompression of its diameter, the yarn cut to
   // Munden's loop length), stockinette's free width gives back the weight's standard gauge within 10 %; the yarn
