@@ -350,6 +350,7 @@ int run_command_line(int argc, char** argv) {
   pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
   pat->add_option("--k-bend", pat_options.params.k_bend, "with --relax: bending stiffness (Leaf eq. 7), as relax-yarn's")->capture_default_str();
   pat->add_option("--k-contact", pat_options.params.k_contact, "with --relax: contact stiffness (Leaf eq. 9), as relax-yarn's")->capture_default_str();
+  pat->add_option("--k-stretch", pat_options.params.k_stretch, "with --relax: internal stretch stiffness (Leaf eq. 8), as relax-yarn's")->capture_default_str();
   pat->add_flag("--shear", pat_options.period.shear, "with --free-period: the repeat may shear too (a diagonal pattern); without it only its two lengths relax");
   pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
       ->capture_default_str();

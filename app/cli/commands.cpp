@@ -369,7 +369,9 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
     json free = {{"period_x_mm", {period(0, 0), period(1, 0), period(2, 0)}}, {"period_y_mm", {period(0, 1), period(1, 1), period(2, 1)}},
                  {"repeat_mm", {lx, ly}}, {"shear", period(0, 1) / ly},
                  {"stress_over_bending", {report.period_stress.x(), report.period_stress.y(), report.period_stress.z()}},
-                 {"repeat_energy", report.repeat_energy}};
+                 {"repeat_energy", report.repeat_energy},
+                 {"repeat_energy_terms", {{"bending", report.repeat_terms.bending}, {"stretch", report.repeat_terms.stretch},
+                                          {"length", report.repeat_terms.length}, {"contact", report.repeat_terms.contact}}}};
     if (run.repeat[0] > 0 && run.repeat[1] > 0) {
       free["gauge_per_10cm"] = {{"stitches", 100.0 * run.repeat[0] / lx}, {"rows", 100.0 * run.repeat[1] / ly}};
       // Munden's dimensional constants Kc = courses per length × l and Kw = wales per length × l.

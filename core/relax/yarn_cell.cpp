@@ -75,7 +75,10 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
     const Eigen::Vector3d origin = points.col(sp[1]);
     V p[4], grad[4] = {};
     for (int k = 0; k < 4; ++k) p[k] = vec(points.col(sp[k]) - origin);
-    out.energy += model::segment_intrinsic(p, system.rest_length[s], intrinsic, grad);
+    // The three terms are linear in their stiffnesses: taken one at a time they sum to the whole.
+    out.terms.bending += model::segment_intrinsic(p, system.rest_length[s], {intrinsic.k_bend, 0.0, 0.0}, grad);
+    out.terms.stretch += model::segment_intrinsic(p, system.rest_length[s], {0.0, intrinsic.k_stretch, 0.0}, grad);
+    out.terms.length += model::segment_intrinsic(p, system.rest_length[s], {0.0, 0.0, intrinsic.k_length}, grad);
     for (int k = 0; k < 4; ++k) out.gradient += eig(grad[k]) * cell[sp[k]].transpose();
     // Contact (Leaf eq. 9), half of each pair, as segment_forces counts it.
     samples_of(s, mine);
@@ -90,11 +93,12 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
           V g{0, 0, 0}, d{0, 0, 0};
           const double e = model::sample_contact(a.pos, b.pos, V{0, 0, 0}, V{0, 0, 0}, a.weight * b.weight, contact, g, d);
           if (e == 0 && g.x == 0 && g.y == 0 && g.z == 0) continue;
-          out.energy += 0.5 * e;
+          out.terms.contact += 0.5 * e;
           out.gradient += 0.5 * eig(g) * (a.cell - b.cell).transpose();
         }
     }
   }
+  out.energy = out.terms.bending + out.terms.stretch + out.terms.length + out.terms.contact;
   out.area = map.period_x.cross(map.period_y).norm();
   return out;
 }
@@ -124,6 +128,7 @@ Eigen::Matrix<double, 3, 2> PeriodRelaxer::propose(const CellStress& stress, con
   const Eigen::Vector3d g = Eigen::Vector3d(stress.gradient(0, 0), stress.gradient(1, 1), stress.gradient(0, 1)).cwiseProduct(free);
   m_stress = period_stresses(stress, m_period).cwiseProduct(free);
   m_energy = stress.energy;
+  m_terms = stress.terms;
   Eigen::Vector3d move = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
     const double product = g[i] * m_last[i];

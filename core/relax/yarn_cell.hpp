@@ -21,6 +21,12 @@ struct YarnParams;
 /// so the result does not depend on which copy is called real.
 struct CellStress {
   double energy = 0;                                             ///< one repeat's energy
+  /// The same energy by term: bending (Leaf eq. 7), internal stretch (eq. 8), length (eq. 1) and contact (eq. 9).
+  /// Which term holds a relaxed fabric: eq. 8 only keeps the spline's parameter speed even, yet in the model's
+  /// relaxed stockinette it is 96 % of the energy and bending 4 % (docs/BENCHMARKS.md, "What the energy is made of").
+  struct Terms {
+    double bending = 0, stretch = 0, length = 0, contact = 0;
+  } terms;
   Eigen::Matrix<double, 3, 2> gradient = Eigen::Matrix<double, 3, 2>::Zero();  ///< dE / d[period_x period_y]
   double area = 0;                                               ///< |period_x × period_y| [mm²]
   /// The mean stress σ = (1/A) Σ_k dE/dP_k P_kᵀ over the two periods (the energy's derivative per unit strain
@@ -69,6 +75,7 @@ public:
   /// The free components' stresses (dE/dL_x / L_y, dE/dL_y / L_x, dE/ds / L_x) from the last propose.
   const Eigen::Vector3d& stress() const { return m_stress; }
   double energy() const { return m_energy; }  ///< one repeat's energy at the last propose
+  const CellStress::Terms& terms() const { return m_terms; }  ///< the same by term
   /// Every free component's stress at most `limit` [energy / mm²].
   bool converged(double limit) const;
 
@@ -77,6 +84,7 @@ private:
   Eigen::Matrix<double, 3, 2> m_period;
   Eigen::Vector3d m_step, m_last = Eigen::Vector3d::Zero(), m_stress = Eigen::Vector3d::Constant(INFINITY);
   double m_energy = 0;
+  CellStress::Terms m_terms;
 };
 
 }  // namespace skein::relax

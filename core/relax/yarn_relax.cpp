@@ -520,12 +520,14 @@ public:
       report.period = state.period;
       report.period_stress = cell->stress() / force_scale;
       report.repeat_energy = cell->energy();
+      report.repeat_terms = cell->terms();
     } else if (!m_periodic.virtual_points.empty() && m_periodic.cells.size() == m_periodic.virtual_points.size()) {
       // A fixed period's stress says how far it is from the repeat's stress-free one (and its sign, which way).
       report.period << m_periodic.period_x, m_periodic.period_y;
       const CellStress stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
       report.period_stress = period_stresses(stress, report.period) / force_scale;
       report.repeat_energy = stress.energy;
+      report.repeat_terms = stress.terms;
     }
     report.energy = energy;
     report.contacts = m_pairs.pairs();

@@ -188,6 +188,7 @@ struct YarnRelaxReport {
   Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Vector3d period_stress = Eigen::Vector3d::Zero();
   double repeat_energy = 0;  ///< one repeat's energy at the end (cell_stress), with a period
+  CellStress::Terms repeat_terms;  ///< the same by term
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run

@@ -516,7 +516,7 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   EXPECT_NE(r.output.find("stitches and"), std::string::npos) << r.output;
   const auto report = slurp(dir / "r.json");
   for (const char* key : {"\"free_period\"", "\"gauge_per_10cm\"", "\"Kc\"", "\"Kw\"", "\"loop_length_mm\"", "\"repeat_mm\"", "\"stop_rule\": \"force\"", "\"method\": \"lbfgs\"", "\"rows_apart\": false",
-                          "\"force_residual\"", "\"converged\": true", "\"pull_through_events\": 0"})
+                          "\"force_residual\"", "\"converged\": true", "\"pull_through_events\": 0", "\"repeat_energy_terms\"", "\"bending\""})
     EXPECT_NE(report.find(key), std::string::npos) << key << "\n" << report;
   EXPECT_NE(slurp(dir / "log.csv").find(",force,period_x,period_y\n"), std::string::npos);
   // --free-period without a value frees the width only: the rows keep the emitted 5 mm (frictionless yarn's
@@ -534,9 +534,10 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   for (const auto& p : skein::relax::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
   EXPECT_GT(hi - lo, ehi - elo + 0.5);
   // Refused, naming the option, with nothing written.
-  const std::array<std::pair<const char*, const char*>, 3> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
+  const std::array<std::pair<const char*, const char*>, 4> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
                                                                          {"--relax --stop-rule force --backend cuda", "runs on the CPU only"},
-                                                                         {"--relax --free-period --period-tolerance 0", "period tolerance"}}};
+                                                                         {"--relax --free-period --period-tolerance 0", "period tolerance"},
+                                                                         {"--relax --k-stretch -1", "k_stretch must be finite and not negative"}}};
   // --period with --free-period is where the period starts: the log's first row has 0.8 of the emitted width.
   r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "start.bcc").string() + " --relax --free-period --period 0.8x1 --max-steps 5 --log " +
                 (dir / "start.csv").string());

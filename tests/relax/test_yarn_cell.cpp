@@ -91,6 +91,27 @@ TEST(YarnCell, OneRepeatsEnergyIsTheRelaxersShareOfItsRealSegments) {
   EXPECT_NEAR(fd, grad(0, point), 1e-4 * std::abs(grad(0, point)));
 }
 
+TEST(YarnCell, TheRepeatsEnergyByTermSumsToItAndEachTermIsItsStiffnessAlone) {
+  auto p = relaxed_patch("format knit\nk p\n", 60);
+  const YarnParams params;
+  const auto pairs = find_contact_pairs(p.system, p.points, 2 * p.system.radius);
+  const auto whole = cell_stress(p.system, params, pairs, p.patch.map, p.points);
+  const auto& t = whole.terms;
+  EXPECT_NEAR(t.bending + t.stretch + t.length + t.contact, whole.energy, 1e-12 * whole.energy);
+  // Each term is the energy with every other stiffness zero (contact's can only be scaled down: it must be positive).
+  const auto alone = [&](double bend, double stretch, double length, double contact) {
+    YarnParams q = params;
+    q.k_bend = bend, q.k_stretch = stretch, q.k_length = length, q.k_contact = contact;
+    return cell_stress(p.system, q, pairs, p.patch.map, p.points).energy;
+  };
+  const double tiny = 1e-12;
+  EXPECT_NEAR(t.bending, alone(params.k_bend, 0, 0, tiny), 1e-9 * t.bending);
+  EXPECT_NEAR(t.stretch, alone(0, params.k_stretch, 0, tiny), 1e-9 * t.stretch);
+  EXPECT_NEAR(t.length, alone(0, 0, params.k_length, tiny), 1e-9 * std::max(t.length, 1e-6));
+  EXPECT_NEAR(t.contact, alone(0, 0, 0, params.k_contact), 1e-9 * t.contact);
+  EXPECT_GT(t.bending, 0);
+  EXPECT_GT(t.contact, 0);  // a little relaxed: the emitted yarn still presses on itself
+}
 
 namespace {
 
