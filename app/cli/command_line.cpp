@@ -374,9 +374,11 @@ int run_command_line(int argc, char** argv) {
   audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
   std::string audit_ids;
   audit->add_option("--ids", audit_ids, "the stitch ids side file of BEFORE's yarn (skein yarn/relax-yarn/pattern --ids): name each crossing's stitches "
-                                        "(face, row, type)");
+                                        "(face, row, type) and certify stitch by stitch (each stitch's arc closed by its chord: the linking numbers of "
+                                        "neighbouring stitches' loops, before and after)");
   double audit_deviation = 0.1;
-  audit->add_option("--deviation", audit_deviation, "the crossing test's polylines stay this close to the curves, × r (edges per segment from its curvature)")
+  audit->add_option("--deviation", audit_deviation, "the linking numbers' polylines stay this close to the curves, × r (refined further where curves come close); "
+                                                   "the crossing test is exact and has no deviation")
       ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
 
   // skein run
@@ -1058,8 +1060,9 @@ int run_command_line(int argc, char** argv) {
         squares += d * d;
       }
       const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
-      const auto crossing_list = relax::TopologyAuditor(system, audit_deviation).crossings(system.points, q1);
+      const auto crossing_list = relax::TopologyAuditor(system).crossings(system.points, q1);
       const long crossings = static_cast<long>(crossing_list.size());
+      const long unresolved = std::count_if(crossing_list.begin(), crossing_list.end(), [](const auto& c) { return !c.resolved; });
       const auto links_before = relax::linking_numbers(before, audit_deviation), links_after = relax::linking_numbers(after, audit_deviation);
       std::map<std::pair<int, int>, long> lk0, lk1;
       for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
@@ -1067,7 +1070,11 @@ int run_command_line(int argc, char** argv) {
       std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
                 << system.num_points() << "\nlargest control-point move: " << largest << " mm (" << largest / r
                 << " r)\nRMS control-point move: " << rms << " mm (" << rms / r << " r)\n"
-                << "centreline crossings on the straight path between the two states: " << crossings << "\n";
+                << "centreline crossings on the straight path between the two states (exact test, Bezier hulls): " << crossings;
+      if (unresolved > 0)
+        std::cout << " (" << unresolved << " of them pairs the test could not settle in " << relax::kMaxAuditPieces
+                  << " pieces, centrelines nearly touching along a stretch: counted as crossings)";
+      std::cout << "\n";
       // With the ids: a segment's stitch is its first point's, else its second's (a point of no face has none).
       const auto stitch_of = [&](int segment) -> const relax::PointId* {
         for (int k : {1, 2})
@@ -1105,7 +1112,35 @@ int run_command_line(int argc, char** argv) {
         if (++changed <= 20) std::cout << "linking number of closed curves " << k.first << " and " << k.second << ": " << a << " -> " << b << "\n";
       }
       std::cout << "linking numbers changed: " << changed << " (of " << keys.size() << " pairs of closed curves that come near)\n";
-      return crossings == 0 && changed == 0 ? 0 : 1;
+      long stitches_changed = 0;
+      if (!ids.empty()) {
+        // Per-stitch certificates: each stitch's arc closed by its chord, the linking numbers of every two stitch
+        // loops that come near in either state, before and after.
+        std::vector<int> face(ids.size()), row(ids.size());
+        for (size_t p = 0; p < ids.size(); ++p) face[p] = ids[p].face, row[p] = ids[p].row;
+        const auto loops = relax::stitch_loops(before, face, row);
+        std::vector<relax::Arc> arcs;
+        for (const auto& l : loops) arcs.push_back(l.arc);
+        std::set<std::pair<int, int>> near;
+        for (const auto* yarn : {&before, &after})
+          for (const auto& pair : relax::near_arcs(*yarn, arcs, audit_deviation)) near.insert(pair);
+        const std::vector<std::pair<int, int>> pairs(near.begin(), near.end());
+        const auto stitch_before = relax::arc_linking_numbers(before, arcs, pairs, audit_deviation);
+        const auto stitch_after = relax::arc_linking_numbers(after, arcs, pairs, audit_deviation);
+        long hooked = 0;
+        for (size_t k = 0; k < pairs.size(); ++k) {
+          hooked += stitch_before[k].number != 0;
+          if (stitch_before[k].number == stitch_after[k].number) continue;
+          const auto& a = loops[pairs[k].first];
+          const auto& b = loops[pairs[k].second];
+          if (++stitches_changed <= 20)
+            std::cout << "stitch loops of faces " << a.face << " (row " << a.row << ") and " << b.face << " (row " << b.row
+                      << "): linking number " << stitch_before[k].number << " -> " << stitch_after[k].number << "\n";
+        }
+        std::cout << "stitch linking numbers changed: " << stitches_changed << " (of " << pairs.size() << " pairs of the " << loops.size()
+                  << " stitch loops that come near, " << hooked << " of them linked before)\n";
+      }
+      return crossings == 0 && changed == 0 && stitches_changed == 0 ? 0 : 1;
     }
     if (*devices) {
       const auto q = cuda::query_devices();

@@ -4,227 +4,223 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <tuple>
-#include <unordered_map>
 
 #include <Eigen/Geometry>
 #include <omp.h>
 
 #include "common/error.hpp"
 #include "relax/segment_distance.hpp"
-#include "relax/segment_distance.hpp"
 
 namespace skein::relax {
 
 using Eigen::Vector3d;
 
-bool edges_meet_during(const Vector3d a0[2], const Vector3d a1[2], const Vector3d b0[2], const Vector3d b1[2], double tolerance) {
-  const auto at = [&](double t, Vector3d out[4]) {
-    out[0] = a0[0] + t * (a1[0] - a0[0]);
-    out[1] = a0[1] + t * (a1[1] - a0[1]);
-    out[2] = b0[0] + t * (b1[0] - b0[0]);
-    out[3] = b0[1] + t * (b1[1] - b0[1]);
-  };
-  const auto distance_at = [&](double t) {
-    Vector3d p[4];
-    at(t, p);
-    return segment_distance(p[0], p[1], p[2], p[3]);
-  };
-  // Points of the edges move at most as far as their farthest end: edges further apart than both moves
-  // together cannot meet.
-  const double reach = std::max((a1[0] - a0[0]).norm(), (a1[1] - a0[1]).norm()) + std::max((b1[0] - b0[0]).norm(), (b1[1] - b0[1]).norm());
-  if (segment_distance(a0[0], a0[1], b0[0], b0[1]) > reach + tolerance) return false;
-  // Two moving edges can only meet when their four ends are coplanar: V(t) = e1 . (e2 x e3) = 0, a cubic.
-  const Vector3d u1 = a0[1] - a0[0], u2 = b0[0] - a0[0], u3 = b0[1] - a0[0];
-  const Vector3d w1 = (a1[1] - a1[0]) - u1, w2 = (b1[0] - a1[0]) - u2, w3 = (b1[1] - a1[0]) - u3;
-  const double c0 = u1.dot(u2.cross(u3));
-  const double c1 = w1.dot(u2.cross(u3)) + u1.dot(u2.cross(w3) + w2.cross(u3));
-  const double c2 = w1.dot(u2.cross(w3) + w2.cross(u3)) + u1.dot(w2.cross(w3));
-  const double c3 = w1.dot(w2.cross(w3));
-  const auto volume = [&](double t) { return ((c3 * t + c2) * t + c1) * t + c0; };
-  // Monotone pieces of [0, 1] between the cubic's turning points; a root in each is found by bisection.
-  std::array<double, 4> cuts{0, 1, 1, 1};
-  int count = 1;
-  const double qa = 3 * c3, qb = 2 * c2, qc = c1;
-  if (std::abs(qa) > 1e-300) {
-    const double disc = qb * qb - 4 * qa * qc;
-    if (disc >= 0) {
-      const double sq = std::sqrt(disc);
-      for (double t : {(-qb - sq) / (2 * qa), (-qb + sq) / (2 * qa)})
-        if (t > 0 && t < 1) cuts[count++] = t;
-    }
-  } else if (std::abs(qb) > 1e-300) {
-    const double t = -qc / qb;
-    if (t > 0 && t < 1) cuts[count++] = t;
+namespace {
+
+/// One piece [s0, s1] x [u0, u1] x [t0, t1] of the difference D(s, u, t) = y_a(s, t) − y_b(u, t), by its
+/// Bernstein coefficients c[(i * 4 + j) * 2 + k] (degree 3 in s, 3 in u, 1 in t): D's values on the piece lie in
+/// their convex hull.
+struct Piece {
+  Vector3d c[32];
+  double s0, s1, u0, u1, t0, t1;
+};
+
+int at(int i, int j, int k) { return (i * 4 + j) * 2 + k; }
+
+/// Is every coefficient more than `margin` along the direction n (any length; none when zero)?
+bool beyond(const Piece& p, Vector3d n, double margin) {
+  const double length = n.norm();
+  if (!(length > 0)) return false;
+  n /= length;
+  for (const Vector3d& c : p.c)
+    if (n.dot(c) <= margin) return false;
+  return true;
+}
+
+/// Does a plane separate the hull of the coefficients from the origin by more than `margin`? The box's faces
+/// first, then the plane normal to the coefficients' mean (the direction from b to a), then the plane normal to
+/// both curves' chords (their common perpendicular where the two pieces are nearly straight), facing the mean.
+bool proved_apart(const Piece& p, double margin, Vector3d& lo, Vector3d& hi) {
+  lo = hi = p.c[0];
+  Vector3d sum = Vector3d::Zero();
+  for (const Vector3d& c : p.c) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+    sum += c;
   }
-  cuts[count++] = 1;
-  std::sort(cuts.begin(), cuts.begin() + count);
-  const double scale = std::max({std::abs(c0), std::abs(c1), std::abs(c2), std::abs(c3)});
-  if (scale <= 1e-300) {  // coplanar throughout the move: look along it
-    for (int i = 0; i <= 64; ++i)
-      if (distance_at(i / 64.0) <= tolerance) return true;
-    return false;
-  }
-  for (int i = 0; i + 1 < count; ++i) {
-    double lo = cuts[i], hi = cuts[i + 1];
-    double vlo = volume(lo), vhi = volume(hi);
-    if (distance_at(lo) <= tolerance || distance_at(hi) <= tolerance) return true;
-    if ((vlo > 0) == (vhi > 0)) continue;
-    for (int k = 0; k < 100 && hi - lo > 1e-15; ++k) {
-      const double mid = 0.5 * (lo + hi), vm = volume(mid);
-      if ((vm > 0) == (vlo > 0)) {
-        lo = mid;
-        vlo = vm;
-      } else {
-        hi = mid;
+  if ((lo.array() > margin).any() || (hi.array() < -margin).any()) return true;
+  if (beyond(p, sum, margin)) return true;
+  // The chords at the start of the piece: a's along s (j fixed), b's along u (their difference's change along u is −b's).
+  const Vector3d chord_a = p.c[at(3, 0, 0)] - p.c[at(0, 0, 0)], chord_b = p.c[at(0, 3, 0)] - p.c[at(0, 0, 0)];
+  Vector3d n = chord_a.cross(chord_b);
+  if (n.dot(sum) < 0) n = -n;
+  return beyond(p, n, margin);
+}
+
+/// Halves a cubic's four coefficients c[first + step * m] (de Casteljau at 1/2) into the same places of left and right.
+void halve_cubic(const Vector3d* c, Vector3d* left, Vector3d* right, int first, int step) {
+  const Vector3d& p0 = c[first];
+  const Vector3d& p1 = c[first + step];
+  const Vector3d& p2 = c[first + 2 * step];
+  const Vector3d& p3 = c[first + 3 * step];
+  const Vector3d q0 = 0.5 * (p0 + p1), q1 = 0.5 * (p1 + p2), q2 = 0.5 * (p2 + p3), r0 = 0.5 * (q0 + q1), r1 = 0.5 * (q1 + q2), mid = 0.5 * (r0 + r1);
+  left[first] = p0, left[first + step] = q0, left[first + 2 * step] = r0, left[first + 3 * step] = mid;
+  right[first] = mid, right[first + step] = r1, right[first + 2 * step] = q2, right[first + 3 * step] = p3;
+}
+
+/// Splits a piece in two across s (axis 0), u (1) or t (2).
+void split(const Piece& p, int axis, Piece& left, Piece& right) {
+  left = right = p;
+  if (axis == 0) {
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 2; ++k) halve_cubic(p.c, left.c, right.c, at(0, j, k), at(1, 0, 0));
+    left.s1 = right.s0 = 0.5 * (p.s0 + p.s1);
+  } else if (axis == 1) {
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 2; ++k) halve_cubic(p.c, left.c, right.c, at(i, 0, k), at(0, 1, 0));
+    left.u1 = right.u0 = 0.5 * (p.u0 + p.u1);
+  } else {
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) {
+        const Vector3d mid = 0.5 * (p.c[at(i, j, 0)] + p.c[at(i, j, 1)]);
+        left.c[at(i, j, 1)] = right.c[at(i, j, 0)] = mid;
       }
+    left.t1 = right.t0 = 0.5 * (p.t0 + p.t1);
+  }
+}
+
+/// The axis along which the coefficients change most: 3 × the largest difference of neighbours along s or u
+/// (a cubic's derivative bound), the largest difference along t.
+int widest_axis(const Piece& p) {
+  double ds = 0, du = 0, dt = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 2; ++k) {
+        const Vector3d& c = p.c[at(i, j, k)];
+        if (i < 3) ds = std::max(ds, (p.c[at(i + 1, j, k)] - c).squaredNorm());
+        if (j < 3) du = std::max(du, (p.c[at(i, j + 1, k)] - c).squaredNorm());
+        if (k == 0) dt = std::max(dt, (p.c[at(i, j, 1)] - c).squaredNorm());
+      }
+  ds *= 9, du *= 9;
+  return ds >= du && ds >= dt ? 0 : du >= dt ? 1 : 2;
+}
+
+Vector3d bezier_point(const Vector3d b[4], double s) {
+  const double r = 1 - s;
+  return r * r * r * b[0] + 3 * r * r * s * b[1] + 3 * r * s * s * b[2] + s * s * s * b[3];
+}
+
+int curves_meet(const Vector3d a0[4], const Vector3d a1[4], const Vector3d b0[4], const Vector3d b1[4], double tolerance, int max_pieces,
+                Vector3d* where) {
+  Piece root;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      root.c[at(i, j, 0)] = a0[i] - b0[j];
+      root.c[at(i, j, 1)] = a1[i] - b1[j];
     }
-    if (distance_at(0.5 * (lo + hi)) <= tolerance) return true;
-  }
-  return false;
-}
-
-TopologyAuditor::TopologyAuditor(const YarnSystem& system, double deviation) : m_system(system), m_deviation(deviation * system.radius) {
-  if (!(deviation > 0) || !std::isfinite(deviation)) throw Error("", "audit deviation", "must be positive, found " + std::to_string(deviation));
-}
-
-Vector3d TopologyAuditor::curve_point(const Eigen::Matrix3Xd& points, int segment, double t) const {
-  // Catmull-Rom basis, written out here so that the auditor shares nothing with the relaxer.
-  const auto& sp = m_system.segment_points[segment];
-  const double t2 = t * t, t3 = t2 * t;
-  return 0.5 * ((-t3 + 2 * t2 - t) * points.col(sp[0]) + (3 * t3 - 5 * t2 + 2) * points.col(sp[1]) + (-3 * t3 + 4 * t2 + t) * points.col(sp[2]) +
-                (t3 - t2) * points.col(sp[3]));
-}
-
-std::vector<double> TopologyAuditor::second_derivative_bounds(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
-  std::vector<double> bounds(m_system.num_segments());
-#pragma omp parallel for schedule(static)
-  for (int s = 0; s < m_system.num_segments(); ++s) {
-    // y'' of a cubic is linear in t, and linear in the control points along the move: its largest length
-    // over the segment and the move is at one of its ends in one of the two states.
-    const auto& sp = m_system.segment_points[s];
-    double largest = 0;
-    for (const Eigen::Matrix3Xd* points : {&before, &after}) {
-      const auto p = [&](int k) { return points->col(sp[k]); };
-      largest = std::max({largest, (2 * p(0) - 5 * p(1) + 4 * p(2) - p(3)).norm(), (-p(0) + 4 * p(1) - 5 * p(2) + 2 * p(3)).norm()});
+  root.s0 = root.u0 = root.t0 = 0;
+  root.s1 = root.u1 = root.t1 = 1;
+  // Proved apart: more than a quarter of the tolerance everywhere. Met: a piece whose box holds the origin within
+  // that margin and is at most half the tolerance across, so |D| < tolerance there.
+  const double margin = 0.25 * tolerance;
+  std::vector<Piece> stack{root};
+  int pieces = 0;
+  Vector3d lo, hi;
+  while (!stack.empty()) {
+    const Piece p = stack.back();
+    stack.pop_back();
+    if (proved_apart(p, margin, lo, hi)) continue;
+    if ((hi - lo).norm() <= 0.5 * tolerance) {
+      if (where) *where = bezier_point(a0, 0.5 * (p.s0 + p.s1));
+      return 1;
     }
-    bounds[s] = largest;
-  }
-  return bounds;
-}
-
-std::vector<int> TopologyAuditor::edges_per_segment(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
-  constexpr int kMostEdges = 64;
-  const auto bounds = second_derivative_bounds(before, after);
-  std::vector<int> edges(bounds.size());
-  for (size_t s = 0; s < bounds.size(); ++s)
-    edges[s] = std::clamp(static_cast<int>(std::ceil(std::sqrt(bounds[s] / (8 * m_deviation)))), 1, kMostEdges);
-  return edges;
-}
-
-bool TopologyAuditor::segments_meet_finely(int a, int b, const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, double tolerance) const {
-  constexpr int kFine = 64;
-  std::array<Vector3d, kFine + 1> a0, a1, b0, b1;
-  for (int k = 0; k <= kFine; ++k) {
-    const double t = static_cast<double>(k) / kFine;
-    a0[k] = curve_point(before, a, t);
-    a1[k] = curve_point(after, a, t);
-    b0[k] = curve_point(before, b, t);
-    b1[k] = curve_point(after, b, t);
-  }
-  const auto box = [](const Vector3d& p, const Vector3d& q, const Vector3d& r, const Vector3d& s) {
-    Eigen::AlignedBox3d out(p);
-    return out.extend(q).extend(r).extend(s);
-  };
-  for (int i = 0; i < kFine; ++i) {
-    const auto box_a = box(a0[i], a0[i + 1], a1[i], a1[i + 1]);
-    for (int j = 0; j < kFine; ++j) {
-      if (!box_a.intersects(box(b0[j], b0[j + 1], b1[j], b1[j + 1]))) continue;
-      const Vector3d ea0[2] = {a0[i], a0[i + 1]}, ea1[2] = {a1[i], a1[i + 1]}, eb0[2] = {b0[j], b0[j + 1]}, eb1[2] = {b1[j], b1[j + 1]};
-      if (edges_meet_during(ea0, ea1, eb0, eb1, tolerance)) return true;
+    if (++pieces > max_pieces) {
+      if (where) *where = bezier_point(a0, 0.5 * (p.s0 + p.s1));
+      return -1;
     }
+    Piece left, right;
+    split(p, widest_axis(p), left, right);
+    stack.push_back(right);
+    stack.push_back(left);
   }
-  return false;
+  return 0;
+}
+
+}  // namespace
+
+int bezier_curves_meet_during(const Vector3d a0[4], const Vector3d a1[4], const Vector3d b0[4], const Vector3d b1[4], double tolerance, int max_pieces) {
+  return curves_meet(a0, a1, b0, b1, tolerance, max_pieces, nullptr);
+}
+
+TopologyAuditor::TopologyAuditor(const YarnSystem& system, double tolerance) : m_system(system), m_tolerance(tolerance * system.radius) {
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) throw Error("", "audit tolerance", "must be positive, found " + std::to_string(tolerance));
 }
 
 std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
-  // Polylines: segment s has edges [first[s], first[s + 1]) and points [first[s] + s, first[s + 1] + s].
   const int segments = m_system.num_segments();
-  const auto per = edges_per_segment(before, after);
-  std::vector<long> first(segments + 1, 0);
-  for (int s = 0; s < segments; ++s) first[s + 1] = first[s] + per[s];
-  const long edges = first[segments];
-  std::vector<int> segment_of(edges);
-  Eigen::Matrix3Xd p0(3, edges + segments), p1(3, edges + segments);
-#pragma omp parallel for schedule(static)
-  for (int s = 0; s < segments; ++s)
-    for (int k = 0; k <= per[s]; ++k) {
-      const double t = static_cast<double>(k) / per[s];
-      p0.col(first[s] + s + k) = curve_point(before, s, t);
-      p1.col(first[s] + s + k) = curve_point(after, s, t);
-      if (k < per[s]) segment_of[first[s] + k] = s;
+  // Each segment's Bezier control points in both states (Catmull-Rom to Bezier, written out here so that the
+  // auditor shares nothing with the relaxer), and the box that holds the segment all through the move.
+  std::vector<std::array<Vector3d, 8>> bezier(segments);
+  std::vector<Eigen::AlignedBox3d> boxes(segments);
+  std::vector<char> moving(segments);
+  double width_sum = 0;
+#pragma omp parallel for schedule(static) reduction(+ : width_sum)
+  for (int s = 0; s < segments; ++s) {
+    const auto& sp = m_system.segment_points[s];
+    Eigen::AlignedBox3d box;
+    for (int state = 0; state < 2; ++state) {
+      const Eigen::Matrix3Xd& q = state == 0 ? before : after;
+      const Vector3d p0 = q.col(sp[0]), p1 = q.col(sp[1]), p2 = q.col(sp[2]), p3 = q.col(sp[3]);
+      Vector3d* b = bezier[s].data() + 4 * state;
+      b[0] = p1, b[1] = p1 + (p2 - p0) / 6, b[2] = p2 - (p3 - p1) / 6, b[3] = p2;
+      for (int k = 0; k < 4; ++k) box.extend(b[k]);
     }
-  const auto ends = [&](long e) {
-    const long i = e + segment_of[e];
-    return std::array<long, 2>{i, i + 1};
-  };
-  // Swept boxes of the edges, bucketed in a grid whose cells are as wide as the widest box.
-  // Two edges that both stay put cannot meet during the move: only pairs with a moving edge are tested.
-  std::vector<Eigen::AlignedBox3d> boxes(edges);
-  std::vector<char> moving(edges);
-  double widest = 0;
-#pragma omp parallel for schedule(static) reduction(max : widest)
-  for (long e = 0; e < edges; ++e) {
-    const auto [i, j] = ends(e);
-    Eigen::AlignedBox3d box(p0.col(i));
-    box.extend(Vector3d(p0.col(j))).extend(Vector3d(p1.col(i))).extend(Vector3d(p1.col(j)));
-    boxes[e] = box;
-    moving[e] = p0.col(i) != p1.col(i) || p0.col(j) != p1.col(j);
-    widest = std::max(widest, box.sizes().maxCoeff());
+    box.extend(box.min() - Vector3d::Constant(m_tolerance)).extend(box.max() + Vector3d::Constant(m_tolerance));
+    boxes[s] = box;
+    moving[s] = 0;
+    for (int k = 0; k < 4; ++k) moving[s] |= before.col(sp[k]) != after.col(sp[k]);
+    width_sum += box.sizes().maxCoeff();
   }
-  const double cell = std::max(widest, 1e-9);
-  const auto key_of = [&](const Vector3d& c, int dx, int dy, int dz) {
-    const auto part = [](double v, int d) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v)) + d + (1 << 20)) & 0x1fffff; };
-    return (part(c.x() / cell, dx) << 42) | (part(c.y() / cell, dy) << 21) | part(c.z() / cell, dz);
+  const double mean_width = segments > 0 ? width_sum / segments : 0;
+  // Every box in each grid cell it overlaps, the cells three times as wide as the boxes are on average (a few long segments
+  // do not make every cell crowded). A pair of boxes that meet is tested in one cell only: the one that holds
+  // the lowest corner of their overlap.
+  const double cell = std::max(3 * mean_width, 1e-9);
+  const auto index = [&](const Vector3d& x) { return Eigen::Vector3i((x / cell).array().floor().cast<int>()); };
+  const auto key_of = [](const Eigen::Vector3i& c) {
+    const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
+    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
   };
-  std::vector<std::pair<std::uint64_t, long>> sorted(edges);
-  for (long e = 0; e < edges; ++e) sorted[e] = {key_of(boxes[e].center(), 0, 0, 0), e};
+  const auto each_cell = [&](const Eigen::AlignedBox3d& box, const auto& visit) {
+    const Eigen::Vector3i lo = index(box.min()), hi = index(box.max());
+    for (int x = lo.x(); x <= hi.x(); ++x)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int z = lo.z(); z <= hi.z(); ++z) visit(Eigen::Vector3i(x, y, z));
+  };
+  std::vector<std::pair<std::uint64_t, int>> sorted;
+  for (int s = 0; s < segments; ++s) each_cell(boxes[s], [&](const Eigen::Vector3i& c) { sorted.emplace_back(key_of(c), s); });
   std::sort(sorted.begin(), sorted.end());
-  std::unordered_map<std::uint64_t, std::pair<long, long>> cells;  // key -> range in `sorted`
-  for (long i = 0; i < edges;) {
-    long j = i;
-    while (j < edges && sorted[j].first == sorted[i].first) ++j;
-    cells.emplace(sorted[i].first, std::make_pair(i, j));
-    i = j;
-  }
-  const double tolerance = 1e-9 * m_system.radius;
-  std::vector<std::vector<Crossing>> found(edges > 0 ? omp_get_max_threads() : 0);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (long e = 0; e < edges; ++e) {
-    if (!moving[e]) continue;
-    const Vector3d c = boxes[e].center();
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto cell = cells.find(key_of(c, dx, dy, dz));
-          if (cell == cells.end()) continue;
-          for (long i = cell->second.first; i < cell->second.second; ++i) {
-            const long f = sorted[i].second;
-            // Each pair once: a pair of moving edges from its first edge, a moving edge and a still one from the moving one.
-            if (f == e || (moving[f] && f < e) || !boxes[e].intersects(boxes[f]) ||
-                m_system.adjacent(segment_of[e], segment_of[f]))
-              continue;
-            const auto [ei, ej] = ends(e);
-            const auto [fi, fj] = ends(f);
-            const Vector3d a0[2] = {p0.col(ei), p0.col(ej)}, a1[2] = {p1.col(ei), p1.col(ej)};
-            const Vector3d b0[2] = {p0.col(fi), p0.col(fj)}, b1[2] = {p1.col(fi), p1.col(fj)};
-            // A meeting of the coarse polylines is confirmed on 64 points per segment: where two centrelines
-            // come closer than the coarse polylines' own error, the coarse edges can cross when the curves do not.
-            const int sa = segment_of[e], sb = segment_of[f];
-            if (edges_meet_during(a0, a1, b0, b1, tolerance) && segments_meet_finely(sa, sb, before, after, tolerance))
-              found[omp_get_thread_num()].push_back({sa, sb, 0.5 * (a0[0] + b0[0])});
-          }
-        }
+  std::vector<std::vector<Crossing>> found(segments > 0 ? omp_get_max_threads() : 0);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int a = 0; a < segments; ++a) {
+    if (!moving[a]) continue;
+    each_cell(boxes[a], [&](const Eigen::Vector3i& home) {
+      const std::uint64_t key = key_of(home);
+      for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1)); it != sorted.end() && it->first == key; ++it) {
+        const int b = it->second;
+        // Each pair once: two moving segments from the first, a moving and a still one from the moving one.
+        if (b == a || (moving[b] && b < a) || !boxes[a].intersects(boxes[b]) || index(boxes[a].intersection(boxes[b]).min()) != home ||
+            m_system.adjacent(a, b))
+          continue;
+        const Vector3d* pa = bezier[a].data();
+        const Vector3d* pb = bezier[b].data();
+        Vector3d where;
+        const int met = curves_meet(pa, pa + 4, pb, pb + 4, m_tolerance, kMaxAuditPieces, &where);
+        if (met != 0) found[omp_get_thread_num()].push_back({std::min(a, b), std::max(a, b), where, met > 0});
+      }
+    });
   }
   std::vector<Crossing> all;
   for (const auto& part : found) all.insert(all.end(), part.begin(), part.end());
@@ -265,20 +261,103 @@ double linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d
 
 namespace {
 
-/// A closed Catmull-Rom curve as a polyline of `per_segment` samples per segment, and the bound on how far the
-/// polyline strays from the curve: max |y''| / 8 per_segment² (the chord error of each piece).
+/// Calls visit(i, j) once for every edge i of closed polyline a and edge j of closed polyline b whose boxes,
+/// a's grown by `reach`, overlap: b's edges are put in every cell of a grid they overlap (cells twice the mean
+/// edge box), a's look in the cells they overlap, and a pair is taken in the cell that holds the lowest corner
+/// of the two boxes' overlap only.
+template <class Visit>
+void near_edge_pairs(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b, double reach, Visit visit) {
+  const auto box_of = [](const std::vector<Vector3d>& line, size_t i, double grow) {
+    const Vector3d& p = line[i];
+    const Vector3d& q = line[(i + 1) % line.size()];
+    return Eigen::AlignedBox3d(p.cwiseMin(q) - Vector3d::Constant(grow), p.cwiseMax(q) + Vector3d::Constant(grow));
+  };
+  double width = 0;
+  for (size_t j = 0; j < b.size(); ++j) width += box_of(b, j, 0).sizes().maxCoeff();
+  const double cell = std::max(2 * width / std::max<size_t>(b.size(), 1) + reach, 1e-12);
+  const auto index = [&](const Vector3d& x) { return Eigen::Vector3i((x / cell).array().floor().cast<int>()); };
+  const auto key_of = [](const Eigen::Vector3i& c) {
+    const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
+    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
+  };
+  const auto each_cell = [&](const Eigen::AlignedBox3d& box, const auto& f) {
+    const Eigen::Vector3i lo = index(box.min()), hi = index(box.max());
+    for (int x = lo.x(); x <= hi.x(); ++x)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int z = lo.z(); z <= hi.z(); ++z) f(Eigen::Vector3i(x, y, z));
+  };
+  std::vector<std::pair<std::uint64_t, int>> sorted;
+  for (size_t j = 0; j < b.size(); ++j) each_cell(box_of(b, j, 0), [&](const Eigen::Vector3i& c) { sorted.emplace_back(key_of(c), static_cast<int>(j)); });
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 0; i < a.size(); ++i) {
+    const auto box_a = box_of(a, i, reach);
+    each_cell(box_a, [&](const Eigen::Vector3i& home) {
+      const std::uint64_t key = key_of(home);
+      for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1)); it != sorted.end() && it->first == key; ++it) {
+        const auto box_b = box_of(b, it->second, 0);
+        if (box_a.intersects(box_b) && index(box_a.intersection(box_b).min()) == home) visit(i, static_cast<size_t>(it->second));
+      }
+    });
+  }
+}
+
+}  // namespace
+
+std::optional<long> linking_number_by_crossings(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b, int view) {
+  // A generic view: the polylines rotated so that no edge is seen end on and no two crossings coincide, but for
+  // inputs made to defeat it (then the caller tries another view).
+  const Eigen::Matrix3d rotation = (Eigen::AngleAxisd(0.6180339887 + 1.3247179572 * view, Vector3d(0.2672612419, 0.5345224838, 0.8017837257)) *
+                                    Eigen::AngleAxisd(0.4142135624 * (view + 1), Vector3d::UnitX()))
+                                       .toRotationMatrix();
+  std::vector<Vector3d> pa(a.size()), pb(b.size()), flat_a(a.size()), flat_b(b.size());
+  for (size_t i = 0; i < a.size(); ++i) pa[i] = rotation * a[i], flat_a[i] = {pa[i].x(), pa[i].y(), 0};
+  for (size_t j = 0; j < b.size(); ++j) pb[j] = rotation * b[j], flat_b[j] = {pb[j].x(), pb[j].y(), 0};
+  const auto cross2 = [](const Vector3d& u, const Vector3d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  long over = 0;  // signed crossings where a passes over b
+  bool degenerate = false;
+  near_edge_pairs(flat_a, flat_b, 0.0, [&](size_t i, size_t j) {
+    const Vector3d &a0 = pa[i], &a1 = pa[(i + 1) % pa.size()], &b0 = pb[j], &b1 = pb[(j + 1) % pb.size()];
+    const Vector3d da = a1 - a0, db = b1 - b0;
+    const double o1 = cross2(da, b0 - a0), o2 = cross2(da, b1 - a0), o3 = cross2(db, a0 - b0), o4 = cross2(db, a1 - b0);
+    // An end on the other edge's line, or parallel edges, make the view's crossings ambiguous: another view.
+    const double scale = 1e-12 * (da.head<2>().norm() + db.head<2>().norm()) * (da.head<2>().norm() + db.head<2>().norm() + (b0 - a0).head<2>().norm());
+    if (std::abs(o1) <= scale || std::abs(o2) <= scale || std::abs(o3) <= scale || std::abs(o4) <= scale) {
+      const bool apart = (o1 > scale && o2 > scale) || (o1 < -scale && o2 < -scale) || (o3 > scale && o4 > scale) || (o3 < -scale && o4 < -scale);
+      degenerate |= !apart;
+      return;
+    }
+    if ((o1 > 0) == (o2 > 0) || (o3 > 0) == (o4 > 0)) return;
+    const double s = o3 / (o3 - o4), u = o1 / (o1 - o2);  // where along a and along b
+    const double depth = (a0.z() + s * da.z()) - (b0.z() + u * db.z());
+    if (std::abs(depth) <= 1e-12 * (a0 - b0).norm()) {
+      degenerate = true;  // the curves meet here: no linking number
+      return;
+    }
+    if (depth > 0) over += cross2(da, db) > 0 ? 1 : -1;
+  });
+  if (degenerate) return std::nullopt;
+  return over;
+}
+
+namespace {
+
+/// An arc of a curve as a closed polyline: `per_segment` samples per segment, closed by the chord from its last
+/// point back to its first (none for a whole closed curve), and the bound on how far the polyline strays from
+/// the curve: max |y''| / 8 per_segment² (the chord error of each piece).
 struct SampledLoop {
   std::vector<Vector3d> line;
   double error = 0;
   Eigen::AlignedBox3d box;
 };
 
-SampledLoop sample_loop(const mesh::YarnCurves& yarn, int c, int per_segment) {
+SampledLoop sample_arc(const mesh::YarnCurves& yarn, const Arc& arc, int per_segment) {
   SampledLoop out;
-  const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
-  const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + ((k % n) + n) % n]; };
-  double curvature = 0;  // max |y''| over the curve; y'' is linear on a segment, so its ends bound it
-  for (int k = 0; k < n; ++k) {
+  const int begin = yarn.curve_start[arc.curve], n = yarn.curve_size(arc.curve);
+  const bool closed = yarn.closed[arc.curve];
+  // A closed curve wraps round; an open one repeats its end points as the missing neighbours (as the relaxer does).
+  const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + (closed ? ((k % n) + n) % n : std::clamp(k, 0, n - 1))]; };
+  double curvature = 0;  // max |y''| over the arc; y'' is linear on a segment, so its ends bound it
+  for (int k = arc.first; k < arc.first + arc.segments; ++k) {
     const Vector3d d0 = 2 * point(k - 1) - 5 * point(k) + 4 * point(k + 1) - point(k + 2);   // y''(0)
     const Vector3d d1 = -point(k - 1) + 4 * point(k) - 5 * point(k + 1) + 2 * point(k + 2);  // y''(1)
     curvature = std::max({curvature, d0.norm(), d1.norm()});
@@ -290,61 +369,113 @@ SampledLoop sample_loop(const mesh::YarnCurves& yarn, int c, int per_segment) {
       out.box.extend(p);
     }
   }
+  if (!arc.whole) {
+    out.line.push_back(point(arc.first + arc.segments));
+    out.box.extend(out.line.back());
+  }
   out.error = curvature / (8.0 * per_segment * per_segment);
   out.box.extend(out.box.min() - Vector3d::Constant(out.error));
   out.box.extend(out.box.max() + Vector3d::Constant(out.error));
   return out;
 }
 
-/// Whether two closed polylines come closer than `threshold` anywhere (edge to edge); edges whose boxes are
-/// farther apart than that are skipped without a distance.
+/// Whether two closed polylines come closer than `threshold` anywhere (edge to edge).
 bool polylines_closer_than(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b, double threshold) {
-  for (size_t i = 0; i < a.size(); ++i) {
-    const Vector3d& a0 = a[i];
-    const Vector3d& a1 = a[(i + 1) % a.size()];
-    const Vector3d lo = a0.cwiseMin(a1) - Vector3d::Constant(threshold), hi = a0.cwiseMax(a1) + Vector3d::Constant(threshold);
-    for (size_t j = 0; j < b.size(); ++j) {
-      const Vector3d& b0 = b[j];
-      const Vector3d& b1 = b[(j + 1) % b.size()];
-      if ((b0.cwiseMax(b1).array() < lo.array()).any() || (b0.cwiseMin(b1).array() > hi.array()).any()) continue;
-      if (segment_distance(a0, a1, b0, b1) < threshold) return true;
-    }
-  }
-  return false;
+  bool closer = false;
+  near_edge_pairs(a, b, threshold, [&](size_t i, size_t j) {
+    if (!closer) closer = segment_distance(a[i], a[(i + 1) % a.size()], b[j], b[(j + 1) % b.size()]) < threshold;
+  });
+  return closer;
+}
+
+/// The linking number of two closed polylines that do not meet: by signed crossings (exact, near-linear time),
+/// from another view when one is degenerate, and by the Gauss sum when every view is.
+long polyline_linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
+  for (int view = 0; view < 8; ++view)
+    if (const auto n = linking_number_by_crossings(a, b, view)) return *n;
+  return std::lround(linking_number(a, b));
 }
 
 }  // namespace
 
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
-  std::vector<int> closed;
-  for (int c = 0; c < yarn.curves(); ++c)
-    if (yarn.closed[c] && yarn.curve_size(c) > 2) closed.push_back(c);
-  // Each closed curve first with enough samples to stay within `deviation` r of itself (at least 4 a segment).
+namespace {
+
+/// Each arc sampled to stay within `deviation` r of its curve (at least 4 samples a segment), and its samples a segment.
+std::pair<std::vector<SampledLoop>, std::vector<int>> sampled_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation) {
   const double tolerance = deviation * (yarn.radius > 0 ? yarn.radius : 1.0);
-  std::vector<int> per_segment(closed.size(), 4);
-  std::vector<SampledLoop> loops(closed.size());
-  for (size_t i = 0; i < closed.size(); ++i) {
-    loops[i] = sample_loop(yarn, closed[i], 4);
+  std::vector<int> per_segment(arcs.size(), 4);
+  std::vector<SampledLoop> loops(arcs.size());
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long i = 0; i < static_cast<long>(arcs.size()); ++i) {
+    loops[i] = sample_arc(yarn, arcs[i], 4);
     const int m = static_cast<int>(std::ceil(std::sqrt(16 * loops[i].error / tolerance)));  // the error goes as 1/m², 4² at m = 4
-    if (m > 4) loops[i] = sample_loop(yarn, closed[i], per_segment[i] = std::min(m, kMaxLinkingSamples));
+    if (m > 4) loops[i] = sample_arc(yarn, arcs[i], per_segment[i] = std::min(m, kMaxLinkingSamples));
   }
-  std::vector<std::pair<int, int>> candidates;
-  for (size_t i = 0; i < closed.size(); ++i)
-    for (size_t j = i + 1; j < closed.size(); ++j)
-      if (loops[i].box.intersects(loops[j].box)) candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
-  std::vector<Linking> out(candidates.size());
+  return {std::move(loops), std::move(per_segment)};
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> near_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation) {
+  const auto loops = sampled_arcs(yarn, arcs, deviation).first;
+  std::vector<std::pair<int, int>> out;
+  for (size_t i = 0; i < arcs.size(); ++i)
+    for (size_t j = i + 1; j < arcs.size(); ++j)
+      if (loops[i].box.intersects(loops[j].box)) out.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  return out;
+}
+
+std::vector<Linking> arc_linking_numbers(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, const std::vector<std::pair<int, int>>& pairs,
+                                         double deviation) {
+  const auto [loops, per_segment] = sampled_arcs(yarn, arcs, deviation);
+  std::vector<Linking> out(pairs.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (long k = 0; k < static_cast<long>(candidates.size()); ++k) {
-    const auto [i, j] = candidates[k];
+  for (long k = 0; k < static_cast<long>(pairs.size()); ++k) {
+    const auto [i, j] = pairs[k];
     // The polylines' linking number is the curves' when neither polyline strays from its curve by as much as
     // half their gap: moving each polyline onto its curve then never makes them meet. Refine until it holds.
     SampledLoop a = loops[i], b = loops[j];
     for (int ma = per_segment[i], mb = per_segment[j];;) {
       if (!polylines_closer_than(a.line, b.line, 2 * (a.error + b.error)) || (ma >= kMaxLinkingSamples && mb >= kMaxLinkingSamples)) break;
-      if (a.error >= b.error && ma < kMaxLinkingSamples) a = sample_loop(yarn, closed[i], ma = std::min(2 * ma, kMaxLinkingSamples));
-      else b = sample_loop(yarn, closed[j], mb = std::min(2 * mb, kMaxLinkingSamples));
+      if (a.error >= b.error && ma < kMaxLinkingSamples) a = sample_arc(yarn, arcs[i], ma = std::min(2 * ma, kMaxLinkingSamples));
+      else b = sample_arc(yarn, arcs[j], mb = std::min(2 * mb, kMaxLinkingSamples));
     }
-    out[k] = {closed[i], closed[j], std::lround(linking_number(a.line, b.line))};
+    out[k] = {i, j, polyline_linking_number(a.line, b.line)};
+  }
+  return out;
+}
+
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
+  std::vector<Arc> arcs;
+  for (int c = 0; c < yarn.curves(); ++c)
+    if (yarn.closed[c] && yarn.curve_size(c) > 2) arcs.push_back({c, 0, yarn.curve_size(c), true});
+  auto out = arc_linking_numbers(yarn, arcs, near_arcs(yarn, arcs, deviation), deviation);
+  for (auto& l : out) l.a = arcs[l.a].curve, l.b = arcs[l.b].curve;
+  return out;
+}
+
+std::vector<StitchLoop> stitch_loops(const mesh::YarnCurves& yarn, const std::vector<int>& face, const std::vector<int>& row) {
+  if (face.size() != yarn.points.size() || row.size() != yarn.points.size())
+    throw Error("", "stitch loops", "need a face and a row for each of the yarn's " + std::to_string(yarn.points.size()) + " control points");
+  std::vector<StitchLoop> out;
+  for (int c = 0; c < yarn.curves(); ++c) {
+    const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
+    const auto face_at = [&](int k) { return face[begin + ((k % n) + n) % n]; };
+    // A closed curve's runs are read from a point where the face changes, so that none is cut at the wrap.
+    int start = 0;
+    if (yarn.closed[c]) {
+      while (start < n && face_at(start) == face_at(start - 1)) ++start;
+      if (start == n) {  // one face all round
+        if (face_at(0) >= 0) out.push_back({{c, 0, n, true}, face_at(0), row[begin]});
+        continue;
+      }
+    }
+    for (int k = start; k < start + n;) {
+      int end = k;
+      while (end + 1 < start + n && face_at(end + 1) == face_at(k)) ++end;
+      if (face_at(k) >= 0 && end > k) out.push_back({{c, k, end - k, false}, face_at(k), row[begin + ((k % n) + n) % n]});
+      k = end + 1;
+    }
   }
   return out;
 }

@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -8,56 +10,89 @@
 
 namespace skein::relax {
 
-/// The topology auditor, independent of the pull-through guard (it shares none of its geometry): the yarn
-/// centrelines as polylines and a continuous test of every pair of polyline edges while all control points
-/// move on straight lines from one state to the next; a meeting is confirmed on polylines of 64 points per
-/// segment for the two segments involved. Each segment gets as many polyline edges as its curvature needs to
-/// stay within `deviation` r of its curve in both states and all the way between them (issue 10's adaptive
-/// resolution): m = ceil(sqrt(max |y''| / 8 deviation r)), from the chord error bound h² max |y''| / 8.
+/// The topology auditor, independent of the pull-through guard (it shares none of its geometry): while all
+/// control points move on straight lines from one state to the next, does any centreline touch another? Each
+/// pair of Catmull-Rom segments whose swept Bezier hulls overlap is tested exactly (issue 27): their difference
+/// y_a(s, t) − y_b(u, t) is a polynomial of degree 3 × 3 × 1 in (s, u, t), whose values lie in the convex hull
+/// of its Bernstein coefficients; pieces whose hull a plane separates from the origin are proved apart, the
+/// others are halved (de Casteljau) until proved apart or smaller than `tolerance`, which is a meeting. No
+/// crossing is missed at any separation: centrelines that come within the tolerance count as meeting.
 class TopologyAuditor {
 public:
-  explicit TopologyAuditor(const YarnSystem& system, double deviation = 0.1);
-  /// A centreline crossing: two segments whose polyline edges met during the move, and where (at the start).
+  /// `tolerance`: centrelines closer than this × r count as touching (far below any yarn's gap; rounding in
+  /// the coefficients is about 1e-14 mm).
+  explicit TopologyAuditor(const YarnSystem& system, double tolerance = 1e-9);
+  /// A centreline crossing: two segments that met during the move, and where (at the start). `resolved` is false
+  /// when the pair stayed closer than the test could settle in kMaxAuditPieces pieces: counted as a meeting.
   struct Crossing {
     int segment_a = 0, segment_b = 0;
     Eigen::Vector3d where = Eigen::Vector3d::Zero();
+    bool resolved = true;
   };
-  /// Centreline crossings during the straight-line move from `before` to `after`: edges that meet, of
-  /// segments that are not one piece of yarn (YarnSystem::adjacent).
+  /// Centreline crossings during the straight-line move from `before` to `after`, of segments that are not one
+  /// piece of yarn (YarnSystem::adjacent); pairs of segments that both stay put are not tested.
   std::vector<Crossing> crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
-  /// Per segment: the largest |y''| [mm] over it and over the move from `before` to `after` (a polyline of m
-  /// edges stays within |y''| / 8 m² of the curve).
-  std::vector<double> second_derivative_bounds(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
-  /// Per segment: the polyline edges that keep it within the deviation over the move from `before` to `after`.
-  std::vector<int> edges_per_segment(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
 
 private:
-  Eigen::Vector3d curve_point(const Eigen::Matrix3Xd& points, int segment, double t) const;
-  /// The same test on 64 points per segment, for one pair of segments.
-  bool segments_meet_finely(int a, int b, const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, double tolerance) const;
   const YarnSystem& m_system;
-  double m_deviation;  ///< [mm]
+  double m_tolerance;  ///< [mm]
 };
 
-/// Does the edge a0-a1 meet the edge b0-b1 at some time while all four ends move linearly from their *0
-/// positions (t = 0) to their *1 positions (t = 1)? Edges closer than `tolerance` count as meeting.
-bool edges_meet_during(const Eigen::Vector3d a0[2], const Eigen::Vector3d a1[2], const Eigen::Vector3d b0[2],
-                       const Eigen::Vector3d b1[2], double tolerance);
+/// The most pieces the exact test splits one pair into before it counts the pair as meeting (unresolved).
+inline constexpr int kMaxAuditPieces = 1 << 16;
+
+/// The exact continuous test of two cubic Bezier curves (control points a0, b0 at the start, a1, b1 at the end;
+/// every control point moves on a straight line): do they come within `tolerance` at some (s, u, t)? Returns
+/// 1 for a meeting, 0 when proved apart, -1 when `max_pieces` pieces did not settle it.
+int bezier_curves_meet_during(const Eigen::Vector3d a0[4], const Eigen::Vector3d a1[4], const Eigen::Vector3d b0[4], const Eigen::Vector3d b1[4],
+                              double tolerance, int max_pieces = kMaxAuditPieces);
 
 /// Gauss linking number of two closed polylines (exact for polylines: the solid angle of each pair of edges,
 /// Klenin & Langowski 2000); an integer up to rounding when the curves do not meet.
 double linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
 
-/// Linking numbers between every two closed curves of `yarn` whose bounding boxes overlap (curves with
-/// apart boxes have linking number 0). Each curve is sampled finely enough to stay within `deviation` r of
-/// itself (at least 4 samples a segment), and each pair more finely until neither polyline strays from its
-/// curve by half the gap between them, so that the polylines' linking number is the curves' (up to
-/// kMaxLinkingSamples a segment: curves closer than that resolves are as good as touching).
+/// The same by signed crossings (issue 27): the two polylines seen along a generic direction (`view` picks one
+/// of several), Lk = the sum of the signs of the crossings where a passes over b. Exact for polylines and found in
+/// near-linear time (edges bucketed in a grid of the view). nullopt when the view is degenerate (an end on the
+/// other edge's line, or the polylines meet at a crossing): try another view.
+std::optional<long> linking_number_by_crossings(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, int view = 0);
+
+/// A piece of one curve: its control points first .. first + segments (counted along the curve, wrapping round a
+/// closed one), or the whole closed curve. An arc's loop is the arc closed by the chord from its last point back
+/// to its first (a whole curve needs none).
+struct Arc {
+  int curve = 0, first = 0, segments = 0;
+  bool whole = false;
+};
+
+/// Linking numbers between every two closed curves whose bounding boxes overlap (curves with apart boxes have
+/// linking number 0). Each curve is sampled finely enough to stay within `deviation` r of itself (at least 4
+/// samples a segment), and each pair more finely until neither polyline strays from its curve by half the gap
+/// between them, so that the polylines' linking number is the curves' (up to kMaxLinkingSamples a segment:
+/// curves closer than that resolves are as good as touching). The polylines' linking number is counted by
+/// crossings (linking_number_by_crossings), the Gauss sum kept for views that are all degenerate. a and b are
+/// curve indices.
 struct Linking {
   int a = 0, b = 0;
   long number = 0;
 };
 inline constexpr int kMaxLinkingSamples = 1024;
 std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation = 0.1);
+
+/// The same for arcs' loops (Linking's a and b index `arcs`): the pairs of arcs whose loops' boxes overlap, and
+/// the linking numbers of given pairs, sampled and refined as linking_numbers does.
+std::vector<std::pair<int, int>> near_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation = 0.1);
+std::vector<Linking> arc_linking_numbers(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, const std::vector<std::pair<int, int>>& pairs,
+                                         double deviation = 0.1);
+
+/// Per-stitch loops (issue 27): each run of consecutive control points of one curve in one stitch face (`face`
+/// per point, -1 for none; `row` per point) is an arc, closed by its chord. The linking numbers of neighbouring
+/// stitches' loops certify stitch by stitch that no stitch came unhooked: a row's whole curve cannot see a
+/// clasp undone (its two crossings have opposite signs). Throws skein::Error when the lists are not one per point.
+struct StitchLoop {
+  Arc arc;
+  int face = -1, row = -1;
+};
+std::vector<StitchLoop> stitch_loops(const mesh::YarnCurves& yarn, const std::vector<int>& face, const std::vector<int>& row);
 
 }  // namespace skein::relax

@@ -99,14 +99,6 @@ TEST(YarnAudit, LinkingNumbersSeeARingHookedCloserThanFourSamplesASegmentResolve
   EXPECT_EQ(linking_numbers(y)[0].number, 0);
 }
 
-TEST(YarnAudit, ContinuousEdgeTestSeesACrossingAndNotANearMiss) {
-  const Vector3d a0[2] = {{-1, 0, 0}, {1, 0, 0}}, a1[2] = {{-1, 0, 0}, {1, 0, 0}};
-  const Vector3d b0[2] = {{0, -1, 1}, {0, 1, 1}}, b1[2] = {{0, -1, -1}, {0, 1, -1}};  // passes through a
-  EXPECT_TRUE(edges_meet_during(a0, a1, b0, b1, 1e-9));
-  const Vector3d c0[2] = {{2, -1, 1}, {2, 1, 1}}, c1[2] = {{2, -1, -1}, {2, 1, -1}};  // passes beside a
-  EXPECT_FALSE(edges_meet_during(a0, a1, c0, c1, 1e-9));
-}
-
 TEST(YarnAudit, AuditorCountsARingPulledThroughAnother) {
   const auto yarn = skein::testing::linked_rings();
   const auto system = make_yarn_system(yarn);

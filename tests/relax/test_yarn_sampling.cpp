@@ -7,7 +7,6 @@
 
 #include <cmath>
 
-#include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
 #include "relax/yarn_segment.hpp"
@@ -139,43 +138,4 @@ TEST(YarnRelax, AdaptiveContactSamplesEndNearLeafsCountsWithFewerSamples) {
   std::printf("contact samples %d (Leaf's rule %d); steps %ld vs %ld; RMS %.4f r; energy %.6g vs %.6g\n", total(adaptive), total(k.system),
               report.steps, leaf.steps, rms, report.energy, leaf.energy);
   EXPECT_LT(rms, 0.25);
-}
-
-TEST(AuditorPolylines, EdgesFollowCurvatureAndKeepThePolylinesWithinTheDeviation) {
-  const double r = 0.5;
-  mesh::YarnCurves yarn = line(r, 2 * r, 6);
-  skein::testing::add_ring(yarn, {0, 5, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 1.5 * r, 5);  // tight: 108° a point
-  skein::testing::add_ring(yarn, {0, 12, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 4 * r, 8);
-  const auto system = make_yarn_system(yarn);
-  const Eigen::Matrix3Xd after = system.points + 0.3 * r * Eigen::Matrix3Xd::Random(3, system.num_points());
-  for (double deviation : {0.1, 0.02}) {
-    const TopologyAuditor auditor(system, deviation);
-    const auto still = auditor.edges_per_segment(system.points, system.points);
-    EXPECT_EQ(still[2], 1);                            // a straight segment
-    EXPECT_GT(still[5], 1);                            // the tight ring
-    EXPECT_GE(still[5], still[10]);                    // against the wide one
-    const auto edges = auditor.edges_per_segment(system.points, after);
-    // Brute force: on the straight move's states, every polyline point is within the deviation of the curve
-    // at the same parameter.
-    for (double tau : {0.0, 0.3, 1.0}) {
-      const Eigen::Matrix3Xd points = (1 - tau) * system.points + tau * after;
-      for (int s = 0; s < system.num_segments(); ++s) {
-        const auto& sp = system.segment_points[s];
-        const auto curve = [&](double t) {
-          double w[4];
-          model::basis(t, w);
-          Eigen::Vector3d y = Eigen::Vector3d::Zero();
-          for (int k = 0; k < 4; ++k) y += w[k] * points.col(sp[k]);
-          return y;
-        };
-        double worst = 0;
-        for (int e = 0; e < edges[s]; ++e)
-          for (int i = 0; i <= 16; ++i) {
-            const double a = static_cast<double>(e) / edges[s], b = static_cast<double>(e + 1) / edges[s], f = i / 16.0;
-            worst = std::max(worst, ((1 - f) * curve(a) + f * curve(b) - curve(a + f * (b - a))).norm());
-          }
-        EXPECT_LE(worst, deviation * r * (1 + 1e-9)) << "segment " << s << " at " << tau;
-      }
-    }
-  }
 }
