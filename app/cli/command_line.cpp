@@ -374,8 +374,7 @@ int run_command_line(int argc, char** argv) {
   audit->add_option("AFTER", audit_after, "yarn after (.bcc), the same curves and point counts")->required();
   std::string audit_ids;
   audit->add_option("--ids", audit_ids, "the stitch ids side file of BEFORE's yarn (skein yarn/relax-yarn/pattern --ids): name each crossing's stitches "
-                                        "(face, row, type) and certify stitch by stitch (each stitch's arc closed by its chord: the linking numbers of "
-                                        "neighbouring stitches' loops, before and after)");
+                                        "(face, row, type)");
   double audit_deviation = 0.1;
   audit->add_option("--deviation", audit_deviation, "the linking numbers' polylines stay this close to the curves, × r (refined further where curves come close); "
                                                    "the crossing test is exact and has no deviation")
@@ -1112,35 +1111,7 @@ int run_command_line(int argc, char** argv) {
         if (++changed <= 20) std::cout << "linking number of closed curves " << k.first << " and " << k.second << ": " << a << " -> " << b << "\n";
       }
       std::cout << "linking numbers changed: " << changed << " (of " << keys.size() << " pairs of closed curves that come near)\n";
-      long stitches_changed = 0;
-      if (!ids.empty()) {
-        // Per-stitch certificates: each stitch's arc closed by its chord, the linking numbers of every two stitch
-        // loops that come near in either state, before and after.
-        std::vector<int> face(ids.size()), row(ids.size());
-        for (size_t p = 0; p < ids.size(); ++p) face[p] = ids[p].face, row[p] = ids[p].row;
-        const auto loops = relax::stitch_loops(before, face, row);
-        std::vector<relax::Arc> arcs;
-        for (const auto& l : loops) arcs.push_back(l.arc);
-        std::set<std::pair<int, int>> near;
-        for (const auto* yarn : {&before, &after})
-          for (const auto& pair : relax::near_arcs(*yarn, arcs, audit_deviation)) near.insert(pair);
-        const std::vector<std::pair<int, int>> pairs(near.begin(), near.end());
-        const auto stitch_before = relax::arc_linking_numbers(before, arcs, pairs, audit_deviation);
-        const auto stitch_after = relax::arc_linking_numbers(after, arcs, pairs, audit_deviation);
-        long hooked = 0;
-        for (size_t k = 0; k < pairs.size(); ++k) {
-          hooked += stitch_before[k].number != 0;
-          if (stitch_before[k].number == stitch_after[k].number) continue;
-          const auto& a = loops[pairs[k].first];
-          const auto& b = loops[pairs[k].second];
-          if (++stitches_changed <= 20)
-            std::cout << "stitch loops of faces " << a.face << " (row " << a.row << ") and " << b.face << " (row " << b.row
-                      << "): linking number " << stitch_before[k].number << " -> " << stitch_after[k].number << "\n";
-        }
-        std::cout << "stitch linking numbers changed: " << stitches_changed << " (of " << pairs.size() << " pairs of the " << loops.size()
-                  << " stitch loops that come near, " << hooked << " of them linked before)\n";
-      }
-      return crossings == 0 && changed == 0 && stitches_changed == 0 ? 0 : 1;
+      return crossings == 0 && changed == 0 ? 0 : 1;
     }
     if (*devices) {
       const auto q = cuda::query_devices();

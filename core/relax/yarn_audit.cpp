@@ -341,23 +341,20 @@ std::optional<long> linking_number_by_crossings(const std::vector<Vector3d>& a, 
 
 namespace {
 
-/// An arc of a curve as a closed polyline: `per_segment` samples per segment, closed by the chord from its last
-/// point back to its first (none for a whole closed curve), and the bound on how far the polyline strays from
-/// the curve: max |y''| / 8 per_segment² (the chord error of each piece).
+/// A closed Catmull-Rom curve as a polyline of `per_segment` samples per segment, and the bound on how far the
+/// polyline strays from the curve: max |y''| / 8 per_segment² (the chord error of each piece).
 struct SampledLoop {
   std::vector<Vector3d> line;
   double error = 0;
   Eigen::AlignedBox3d box;
 };
 
-SampledLoop sample_arc(const mesh::YarnCurves& yarn, const Arc& arc, int per_segment) {
+SampledLoop sample_loop(const mesh::YarnCurves& yarn, int c, int per_segment) {
   SampledLoop out;
-  const int begin = yarn.curve_start[arc.curve], n = yarn.curve_size(arc.curve);
-  const bool closed = yarn.closed[arc.curve];
-  // A closed curve wraps round; an open one repeats its end points as the missing neighbours (as the relaxer does).
-  const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + (closed ? ((k % n) + n) % n : std::clamp(k, 0, n - 1))]; };
-  double curvature = 0;  // max |y''| over the arc; y'' is linear on a segment, so its ends bound it
-  for (int k = arc.first; k < arc.first + arc.segments; ++k) {
+  const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
+  const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + ((k % n) + n) % n]; };
+  double curvature = 0;  // max |y''| over the curve; y'' is linear on a segment, so its ends bound it
+  for (int k = 0; k < n; ++k) {
     const Vector3d d0 = 2 * point(k - 1) - 5 * point(k) + 4 * point(k + 1) - point(k + 2);   // y''(0)
     const Vector3d d1 = -point(k - 1) + 4 * point(k) - 5 * point(k + 1) + 2 * point(k + 2);  // y''(1)
     curvature = std::max({curvature, d0.norm(), d1.norm()});
@@ -368,10 +365,6 @@ SampledLoop sample_arc(const mesh::YarnCurves& yarn, const Arc& arc, int per_seg
       out.line.push_back(p);
       out.box.extend(p);
     }
-  }
-  if (!arc.whole) {
-    out.line.push_back(point(arc.first + arc.segments));
-    out.box.extend(out.line.back());
   }
   out.error = curvature / (8.0 * per_segment * per_segment);
   out.box.extend(out.box.min() - Vector3d::Constant(out.error));
@@ -398,84 +391,36 @@ long polyline_linking_number(const std::vector<Vector3d>& a, const std::vector<V
 
 }  // namespace
 
-namespace {
-
-/// Each arc sampled to stay within `deviation` r of its curve (at least 4 samples a segment), and its samples a segment.
-std::pair<std::vector<SampledLoop>, std::vector<int>> sampled_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation) {
+std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
+  std::vector<int> closed;
+  for (int c = 0; c < yarn.curves(); ++c)
+    if (yarn.closed[c] && yarn.curve_size(c) > 2) closed.push_back(c);
+  // Each closed curve first with enough samples to stay within `deviation` r of itself (at least 4 a segment).
   const double tolerance = deviation * (yarn.radius > 0 ? yarn.radius : 1.0);
-  std::vector<int> per_segment(arcs.size(), 4);
-  std::vector<SampledLoop> loops(arcs.size());
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long i = 0; i < static_cast<long>(arcs.size()); ++i) {
-    loops[i] = sample_arc(yarn, arcs[i], 4);
+  std::vector<int> per_segment(closed.size(), 4);
+  std::vector<SampledLoop> loops(closed.size());
+  for (size_t i = 0; i < closed.size(); ++i) {
+    loops[i] = sample_loop(yarn, closed[i], 4);
     const int m = static_cast<int>(std::ceil(std::sqrt(16 * loops[i].error / tolerance)));  // the error goes as 1/m², 4² at m = 4
-    if (m > 4) loops[i] = sample_arc(yarn, arcs[i], per_segment[i] = std::min(m, kMaxLinkingSamples));
+    if (m > 4) loops[i] = sample_loop(yarn, closed[i], per_segment[i] = std::min(m, kMaxLinkingSamples));
   }
-  return {std::move(loops), std::move(per_segment)};
-}
-
-}  // namespace
-
-std::vector<std::pair<int, int>> near_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation) {
-  const auto loops = sampled_arcs(yarn, arcs, deviation).first;
-  std::vector<std::pair<int, int>> out;
-  for (size_t i = 0; i < arcs.size(); ++i)
-    for (size_t j = i + 1; j < arcs.size(); ++j)
-      if (loops[i].box.intersects(loops[j].box)) out.emplace_back(static_cast<int>(i), static_cast<int>(j));
-  return out;
-}
-
-std::vector<Linking> arc_linking_numbers(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, const std::vector<std::pair<int, int>>& pairs,
-                                         double deviation) {
-  const auto [loops, per_segment] = sampled_arcs(yarn, arcs, deviation);
-  std::vector<Linking> out(pairs.size());
+  std::vector<std::pair<int, int>> candidates;
+  for (size_t i = 0; i < closed.size(); ++i)
+    for (size_t j = i + 1; j < closed.size(); ++j)
+      if (loops[i].box.intersects(loops[j].box)) candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
+  std::vector<Linking> out(candidates.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (long k = 0; k < static_cast<long>(pairs.size()); ++k) {
-    const auto [i, j] = pairs[k];
+  for (long k = 0; k < static_cast<long>(candidates.size()); ++k) {
+    const auto [i, j] = candidates[k];
     // The polylines' linking number is the curves' when neither polyline strays from its curve by as much as
     // half their gap: moving each polyline onto its curve then never makes them meet. Refine until it holds.
     SampledLoop a = loops[i], b = loops[j];
     for (int ma = per_segment[i], mb = per_segment[j];;) {
       if (!polylines_closer_than(a.line, b.line, 2 * (a.error + b.error)) || (ma >= kMaxLinkingSamples && mb >= kMaxLinkingSamples)) break;
-      if (a.error >= b.error && ma < kMaxLinkingSamples) a = sample_arc(yarn, arcs[i], ma = std::min(2 * ma, kMaxLinkingSamples));
-      else b = sample_arc(yarn, arcs[j], mb = std::min(2 * mb, kMaxLinkingSamples));
+      if (a.error >= b.error && ma < kMaxLinkingSamples) a = sample_loop(yarn, closed[i], ma = std::min(2 * ma, kMaxLinkingSamples));
+      else b = sample_loop(yarn, closed[j], mb = std::min(2 * mb, kMaxLinkingSamples));
     }
-    out[k] = {i, j, polyline_linking_number(a.line, b.line)};
-  }
-  return out;
-}
-
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
-  std::vector<Arc> arcs;
-  for (int c = 0; c < yarn.curves(); ++c)
-    if (yarn.closed[c] && yarn.curve_size(c) > 2) arcs.push_back({c, 0, yarn.curve_size(c), true});
-  auto out = arc_linking_numbers(yarn, arcs, near_arcs(yarn, arcs, deviation), deviation);
-  for (auto& l : out) l.a = arcs[l.a].curve, l.b = arcs[l.b].curve;
-  return out;
-}
-
-std::vector<StitchLoop> stitch_loops(const mesh::YarnCurves& yarn, const std::vector<int>& face, const std::vector<int>& row) {
-  if (face.size() != yarn.points.size() || row.size() != yarn.points.size())
-    throw Error("", "stitch loops", "need a face and a row for each of the yarn's " + std::to_string(yarn.points.size()) + " control points");
-  std::vector<StitchLoop> out;
-  for (int c = 0; c < yarn.curves(); ++c) {
-    const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
-    const auto face_at = [&](int k) { return face[begin + ((k % n) + n) % n]; };
-    // A closed curve's runs are read from a point where the face changes, so that none is cut at the wrap.
-    int start = 0;
-    if (yarn.closed[c]) {
-      while (start < n && face_at(start) == face_at(start - 1)) ++start;
-      if (start == n) {  // one face all round
-        if (face_at(0) >= 0) out.push_back({{c, 0, n, true}, face_at(0), row[begin]});
-        continue;
-      }
-    }
-    for (int k = start; k < start + n;) {
-      int end = k;
-      while (end + 1 < start + n && face_at(end + 1) == face_at(k)) ++end;
-      if (face_at(k) >= 0 && end > k) out.push_back({{c, k, end - k, false}, face_at(k), row[begin + ((k % n) + n) % n]});
-      k = end + 1;
-    }
+    out[k] = {closed[i], closed[j], polyline_linking_number(a.line, b.line)};
   }
   return out;
 }

@@ -1,6 +1,5 @@
 #pragma once
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -57,42 +56,17 @@ double linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<E
 /// other edge's line, or the polylines meet at a crossing): try another view.
 std::optional<long> linking_number_by_crossings(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, int view = 0);
 
-/// A piece of one curve: its control points first .. first + segments (counted along the curve, wrapping round a
-/// closed one), or the whole closed curve. An arc's loop is the arc closed by the chord from its last point back
-/// to its first (a whole curve needs none).
-struct Arc {
-  int curve = 0, first = 0, segments = 0;
-  bool whole = false;
-};
-
 /// Linking numbers between every two closed curves whose bounding boxes overlap (curves with apart boxes have
 /// linking number 0). Each curve is sampled finely enough to stay within `deviation` r of itself (at least 4
 /// samples a segment), and each pair more finely until neither polyline strays from its curve by half the gap
 /// between them, so that the polylines' linking number is the curves' (up to kMaxLinkingSamples a segment:
 /// curves closer than that resolves are as good as touching). The polylines' linking number is counted by
-/// crossings (linking_number_by_crossings), the Gauss sum kept for views that are all degenerate. a and b are
-/// curve indices.
+/// crossings (linking_number_by_crossings), the Gauss sum kept for views that are all degenerate.
 struct Linking {
   int a = 0, b = 0;
   long number = 0;
 };
 inline constexpr int kMaxLinkingSamples = 1024;
 std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation = 0.1);
-
-/// The same for arcs' loops (Linking's a and b index `arcs`): the pairs of arcs whose loops' boxes overlap, and
-/// the linking numbers of given pairs, sampled and refined as linking_numbers does.
-std::vector<std::pair<int, int>> near_arcs(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, double deviation = 0.1);
-std::vector<Linking> arc_linking_numbers(const mesh::YarnCurves& yarn, const std::vector<Arc>& arcs, const std::vector<std::pair<int, int>>& pairs,
-                                         double deviation = 0.1);
-
-/// Per-stitch loops (issue 27): each run of consecutive control points of one curve in one stitch face (`face`
-/// per point, -1 for none; `row` per point) is an arc, closed by its chord. The linking numbers of neighbouring
-/// stitches' loops certify stitch by stitch that no stitch came unhooked: a row's whole curve cannot see a
-/// clasp undone (its two crossings have opposite signs). Throws skein::Error when the lists are not one per point.
-struct StitchLoop {
-  Arc arc;
-  int face = -1, row = -1;
-};
-std::vector<StitchLoop> stitch_loops(const mesh::YarnCurves& yarn, const std::vector<int>& face, const std::vector<int>& row);
 
 }  // namespace skein::relax
