@@ -19,6 +19,44 @@ using Eigen::Vector3d;
 
 namespace {
 
+/// Boxes put in every cell of a uniform grid that they overlap. A query meets each stored box that overlaps its
+/// box once: in the cell that holds the lowest corner of the two boxes' overlap.
+class BoxGrid {
+public:
+  BoxGrid(std::vector<Eigen::AlignedBox3d> boxes, double cell) : m_boxes(std::move(boxes)), m_cell(std::max(cell, 1e-12)) {
+    for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i)
+      each_cell(m_boxes[i], [&](const Eigen::Vector3i& c) { m_sorted.emplace_back(key_of(c), i); });
+    std::sort(m_sorted.begin(), m_sorted.end());
+  }
+  const Eigen::AlignedBox3d& box(int i) const { return m_boxes[i]; }
+  /// visit(i) for each stored box i that overlaps `query` and that want(i) asks for (asked first: it is cheaper
+  /// than the boxes).
+  template <class Want, class Visit> void overlapping(const Eigen::AlignedBox3d& query, Want want, Visit visit) const {
+    each_cell(query, [&](const Eigen::Vector3i& home) {
+      const std::uint64_t key = key_of(home);
+      for (auto it = std::lower_bound(m_sorted.begin(), m_sorted.end(), std::make_pair(key, -1)); it != m_sorted.end() && it->first == key; ++it)
+        if (want(it->second) && query.intersects(m_boxes[it->second]) && index(query.intersection(m_boxes[it->second]).min()) == home)
+          visit(it->second);
+    });
+  }
+
+private:
+  Eigen::Vector3i index(const Vector3d& x) const { return Eigen::Vector3i((x / m_cell).array().floor().cast<int>()); }
+  static std::uint64_t key_of(const Eigen::Vector3i& c) {
+    const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
+    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
+  }
+  template <class Visit> void each_cell(const Eigen::AlignedBox3d& box, Visit visit) const {
+    const Eigen::Vector3i lo = index(box.min()), hi = index(box.max());
+    for (int x = lo.x(); x <= hi.x(); ++x)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int z = lo.z(); z <= hi.z(); ++z) visit(Eigen::Vector3i(x, y, z));
+  }
+  std::vector<Eigen::AlignedBox3d> m_boxes;
+  double m_cell;
+  std::vector<std::pair<std::uint64_t, int>> m_sorted;
+};
+
 /// One piece [s0, s1] x [u0, u1] x [t0, t1] of the difference D(s, u, t) = y_a(s, t) − y_b(u, t), by its
 /// Bernstein coefficients c[(i * 4 + j) * 2 + k] (degree 3 in s, 3 in u, 1 in t): D's values on the piece lie in
 /// their convex hull.
@@ -184,42 +222,21 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
     width_sum += box.sizes().maxCoeff();
   }
   const double mean_width = segments > 0 ? width_sum / segments : 0;
-  // Every box in each grid cell it overlaps, the cells three times as wide as the boxes are on average (a few long segments
-  // do not make every cell crowded). A pair of boxes that meet is tested in one cell only: the one that holds
-  // the lowest corner of their overlap.
-  const double cell = std::max(3 * mean_width, 1e-9);
-  const auto index = [&](const Vector3d& x) { return Eigen::Vector3i((x / cell).array().floor().cast<int>()); };
-  const auto key_of = [](const Eigen::Vector3i& c) {
-    const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
-    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
-  };
-  const auto each_cell = [&](const Eigen::AlignedBox3d& box, const auto& visit) {
-    const Eigen::Vector3i lo = index(box.min()), hi = index(box.max());
-    for (int x = lo.x(); x <= hi.x(); ++x)
-      for (int y = lo.y(); y <= hi.y(); ++y)
-        for (int z = lo.z(); z <= hi.z(); ++z) visit(Eigen::Vector3i(x, y, z));
-  };
-  std::vector<std::pair<std::uint64_t, int>> sorted;
-  for (int s = 0; s < segments; ++s) each_cell(boxes[s], [&](const Eigen::Vector3i& c) { sorted.emplace_back(key_of(c), s); });
-  std::sort(sorted.begin(), sorted.end());
+  // Cells three times as wide as the boxes are on average: a few long segments do not make every cell crowded.
+  const BoxGrid grid(std::move(boxes), 3 * mean_width);
   std::vector<std::vector<Crossing>> found(segments > 0 ? omp_get_max_threads() : 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int a = 0; a < segments; ++a) {
     if (!moving[a]) continue;
-    each_cell(boxes[a], [&](const Eigen::Vector3i& home) {
-      const std::uint64_t key = key_of(home);
-      for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1)); it != sorted.end() && it->first == key; ++it) {
-        const int b = it->second;
-        // Each pair once: two moving segments from the first, a moving and a still one from the moving one.
-        if (b == a || (moving[b] && b < a) || !boxes[a].intersects(boxes[b]) || index(boxes[a].intersection(boxes[b]).min()) != home ||
-            m_system.adjacent(a, b))
-          continue;
-        const Vector3d* pa = bezier[a].data();
-        const Vector3d* pb = bezier[b].data();
-        Vector3d where;
-        const int met = curves_meet(pa, pa + 4, pb, pb + 4, m_tolerance, kMaxAuditPieces, &where);
-        if (met != 0) found[omp_get_thread_num()].push_back({std::min(a, b), std::max(a, b), where, met > 0});
-      }
+    // Each pair once: two moving segments from the first, a moving and a still one from the moving one.
+    const auto want = [&](int b) { return b != a && !(moving[b] && b < a); };
+    grid.overlapping(grid.box(a), want, [&](int b) {
+      if (m_system.adjacent(a, b)) return;
+      const Vector3d* pa = bezier[a].data();
+      const Vector3d* pb = bezier[b].data();
+      Vector3d where;
+      const int met = curves_meet(pa, pa + 4, pb, pb + 4, m_tolerance, kMaxAuditPieces, &where);
+      if (met != 0) found[omp_get_thread_num()].push_back({std::min(a, b), std::max(a, b), where, met > 0});
     });
   }
   std::vector<Crossing> all;
@@ -262,9 +279,7 @@ double linking_number(const std::vector<Vector3d>& a, const std::vector<Vector3d
 namespace {
 
 /// Calls visit(i, j) once for every edge i of closed polyline a and edge j of closed polyline b whose boxes,
-/// a's grown by `reach`, overlap: b's edges are put in every cell of a grid they overlap (cells twice the mean
-/// edge box), a's look in the cells they overlap, and a pair is taken in the cell that holds the lowest corner
-/// of the two boxes' overlap only.
+/// a's grown by `reach`, overlap (b's edges in a BoxGrid with cells twice their mean box, plus the reach).
 template <class Visit>
 void near_edge_pairs(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b, double reach, Visit visit) {
   const auto box_of = [](const std::vector<Vector3d>& line, size_t i, double grow) {
@@ -272,33 +287,11 @@ void near_edge_pairs(const std::vector<Vector3d>& a, const std::vector<Vector3d>
     const Vector3d& q = line[(i + 1) % line.size()];
     return Eigen::AlignedBox3d(p.cwiseMin(q) - Vector3d::Constant(grow), p.cwiseMax(q) + Vector3d::Constant(grow));
   };
+  std::vector<Eigen::AlignedBox3d> boxes(b.size());
   double width = 0;
-  for (size_t j = 0; j < b.size(); ++j) width += box_of(b, j, 0).sizes().maxCoeff();
-  const double cell = std::max(2 * width / std::max<size_t>(b.size(), 1) + reach, 1e-12);
-  const auto index = [&](const Vector3d& x) { return Eigen::Vector3i((x / cell).array().floor().cast<int>()); };
-  const auto key_of = [](const Eigen::Vector3i& c) {
-    const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
-    return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
-  };
-  const auto each_cell = [&](const Eigen::AlignedBox3d& box, const auto& f) {
-    const Eigen::Vector3i lo = index(box.min()), hi = index(box.max());
-    for (int x = lo.x(); x <= hi.x(); ++x)
-      for (int y = lo.y(); y <= hi.y(); ++y)
-        for (int z = lo.z(); z <= hi.z(); ++z) f(Eigen::Vector3i(x, y, z));
-  };
-  std::vector<std::pair<std::uint64_t, int>> sorted;
-  for (size_t j = 0; j < b.size(); ++j) each_cell(box_of(b, j, 0), [&](const Eigen::Vector3i& c) { sorted.emplace_back(key_of(c), static_cast<int>(j)); });
-  std::sort(sorted.begin(), sorted.end());
-  for (size_t i = 0; i < a.size(); ++i) {
-    const auto box_a = box_of(a, i, reach);
-    each_cell(box_a, [&](const Eigen::Vector3i& home) {
-      const std::uint64_t key = key_of(home);
-      for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, -1)); it != sorted.end() && it->first == key; ++it) {
-        const auto box_b = box_of(b, it->second, 0);
-        if (box_a.intersects(box_b) && index(box_a.intersection(box_b).min()) == home) visit(i, static_cast<size_t>(it->second));
-      }
-    });
-  }
+  for (size_t j = 0; j < b.size(); ++j) width += (boxes[j] = box_of(b, j, 0)).sizes().maxCoeff();
+  const BoxGrid grid(std::move(boxes), 2 * width / std::max<size_t>(b.size(), 1) + reach);
+  for (size_t i = 0; i < a.size(); ++i) grid.overlapping(box_of(a, i, reach), [](int) { return true; }, [&](int j) { visit(i, static_cast<size_t>(j)); });
 }
 
 }  // namespace
