@@ -20,28 +20,47 @@ using Eigen::Vector3d;
 namespace {
 
 /// Boxes put in every cell of a uniform grid that they overlap. A query meets each stored box that overlaps its
-/// box once: in the cell that holds the lowest corner of the two boxes' overlap.
+/// box once: in the cell that holds the lowest corner of the two boxes' overlap. Boxes over more than
+/// kMostCells cells (a stray long segment in a file, or one that is not finite) are kept aside and tested
+/// against every query, and such a query is tested against every box, so that no box makes a grid too large.
 class BoxGrid {
 public:
   BoxGrid(std::vector<Eigen::AlignedBox3d> boxes, double cell) : m_boxes(std::move(boxes)), m_cell(std::max(cell, 1e-12)) {
-    for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i)
-      each_cell(m_boxes[i], [&](const Eigen::Vector3i& c) { m_sorted.emplace_back(key_of(c), i); });
+    for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i) {
+      if (too_large(m_boxes[i])) m_large.push_back(i);
+      else each_cell(m_boxes[i], [&](const Eigen::Vector3i& c) { m_sorted.emplace_back(key_of(c), i); });
+    }
     std::sort(m_sorted.begin(), m_sorted.end());
   }
   const Eigen::AlignedBox3d& box(int i) const { return m_boxes[i]; }
   /// visit(i) for each stored box i that overlaps `query` and that want(i) asks for (asked first: it is cheaper
   /// than the boxes).
   template <class Want, class Visit> void overlapping(const Eigen::AlignedBox3d& query, Want want, Visit visit) const {
+    if (too_large(query)) {
+      for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i)
+        if (want(i) && query.intersects(m_boxes[i])) visit(i);
+      return;
+    }
     each_cell(query, [&](const Eigen::Vector3i& home) {
       const std::uint64_t key = key_of(home);
       for (auto it = std::lower_bound(m_sorted.begin(), m_sorted.end(), std::make_pair(key, -1)); it != m_sorted.end() && it->first == key; ++it)
         if (want(it->second) && query.intersects(m_boxes[it->second]) && index(query.intersection(m_boxes[it->second]).min()) == home)
           visit(it->second);
     });
+    for (int i : m_large)
+      if (want(i) && query.intersects(m_boxes[i])) visit(i);
   }
 
 private:
-  Eigen::Vector3i index(const Vector3d& x) const { return Eigen::Vector3i((x / m_cell).array().floor().cast<int>()); }
+  static constexpr double kMostCells = 4096;
+  /// The cell of a point; coordinates further out than 2^20 cells share the outermost cells (only slower).
+  Eigen::Vector3i index(const Vector3d& x) const {
+    return Eigen::Vector3i((x / m_cell).array().floor().cwiseMax(-1048576.0).cwiseMin(1048576.0).cast<int>());
+  }
+  bool too_large(const Eigen::AlignedBox3d& box) const {
+    const Eigen::Array3d cells = (box.max() / m_cell).array().floor() - (box.min() / m_cell).array().floor() + 1;
+    return !cells.allFinite() || cells.prod() > kMostCells;
+  }
   static std::uint64_t key_of(const Eigen::Vector3i& c) {
     const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
     return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
@@ -55,6 +74,7 @@ private:
   std::vector<Eigen::AlignedBox3d> m_boxes;
   double m_cell;
   std::vector<std::pair<std::uint64_t, int>> m_sorted;
+  std::vector<int> m_large;  ///< boxes kept out of the grid
 };
 
 /// One piece [s0, s1] x [u0, u1] x [t0, t1] of the difference D(s, u, t) = y_a(s, t) − y_b(u, t), by its

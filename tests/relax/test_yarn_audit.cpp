@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -108,7 +109,9 @@ TEST(ExactAudit, YarnPassingOverACurveAtAnyGapIsApartAndAtNoGapMeets) {
       const Vector3d m = bezier(a, 0.5);
       straight({m.x() - 0.1, m.y() - 3, gap}, {m.x() + 0.1, m.y() + 3, gap}, b0);
       straight({m.x() - 0.1, m.y() - 3, -gap}, {m.x() + 0.1, m.y() + 3, -gap}, b1);
-      if (gap > 0) EXPECT_EQ(bezier_curves_meet_during(a, a, b0, b1, 1e-12), 1) << "trial " << trial << ", through at gap " << gap;
+      if (gap > 0) {
+        EXPECT_EQ(bezier_curves_meet_during(a, a, b0, b1, 1e-12), 1) << "trial " << trial << ", through at gap " << gap;
+      }
     }
   }
 }
@@ -143,6 +146,21 @@ TEST(ExactAudit, ARingDraggedThroughAnotherIsCaughtAndASlideIsNot) {
   for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) slide(1, p) += 0.1;
   EXPECT_TRUE(auditor.crossings(system.points, slide).empty());
   EXPECT_THROW(TopologyAuditor(system, 0.0), skein::Error);
+}
+
+TEST(ExactAudit, AStrayPointKilometresAwayIsAuditedWithoutAHugeGrid) {
+  // A file with one control point far out (a unit mistake, a blow-up): its segments' boxes span more cells than
+  // any grid should hold, so they are tested against every segment instead, and the audit ends at once. The
+  // stray segments sweep through ring A's yarn on the way out.
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn);
+  Eigen::Matrix3Xd after = system.points;
+  after.col(yarn.curve_start[1]) = Vector3d(1e6, -1e6, 1e6);
+  const auto crossings = TopologyAuditor(system).crossings(system.points, after);
+  EXPECT_FALSE(crossings.empty());
+  Eigen::Matrix3Xd nowhere = system.points;
+  nowhere.col(yarn.curve_start[1]) = Vector3d::Constant(std::numeric_limits<double>::infinity());
+  EXPECT_NO_THROW(TopologyAuditor(system).crossings(system.points, nowhere));
 }
 
 TEST(ExactAudit, LinkingByCrossingsEqualsTheGaussSumSignIncluded) {
