@@ -183,7 +183,9 @@ int curves_meet(const Vector3d a0[4], const Vector3d a1[4], const Vector3d b0[4]
   // Proved apart: more than a quarter of the tolerance everywhere. Met: a piece whose box holds the origin within
   // that margin and is at most half the tolerance across, so |D| < tolerance there.
   const double margin = 0.25 * tolerance;
-  std::vector<Piece> stack{root};
+  // One stack per thread, kept between calls: the per-step audit tests thousands of pairs, most in one piece.
+  thread_local std::vector<Piece> stack;
+  stack.assign(1, root);
   int pieces = 0;
   Vector3d lo, hi;
   while (!stack.empty()) {
