@@ -10,6 +10,7 @@ packages=(
   gnuplot-nox
   libopenmpi-dev openmpi-bin
   libtinygltf-dev
+  libcgal-dev
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -31,6 +31,7 @@
 #include "relax/yarn_io.hpp"
 #include "relax/yarn_local.hpp"
 #include "relax/yarn_periodic.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "render/chart_view.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
@@ -72,8 +73,15 @@ int run_command_line(int argc, char** argv) {
   stitch->add_option("MESH", stitch_in, "mesh (OBJ, PLY, glTF, FBX, ... or a .skein project)")->required();
   auto* auto_opt = stitch->add_flag("--auto-label", auto_label, "label every row automatically from the lowest border edge");
   auto* labels_opt = stitch->add_option("--labels", stitch_labels, "use the labels stored in this .skein file");
+  bool trace_field = false;
+  std::vector<double> start_point;
+  auto* field_opt = stitch->add_flag("--field", trace_field,
+                                     "trace rows on any surface (triangles, poles, closed) as isolines of the knitting distance from the start (docs/stitch-meshes.md)");
   auto_opt->excludes(labels_opt);
-  stitch->add_option("--start-edge", start_edge, "with --auto-label: the border edge to start from")->needs(auto_opt);
+  field_opt->excludes(auto_opt)->excludes(labels_opt);
+  auto* start_edge_opt = stitch->add_option("--start-edge", start_edge, "with --auto-label or --field: the border edge to start from (default: the lowest)");
+  stitch->add_option("--start-point", start_point, "with --field: knit in the round outwards from the surface point nearest X,Y,Z")
+      ->expected(3)->delimiter(',')->needs(field_opt)->excludes(start_edge_opt);
   stitch->add_option("--stitch-size", size.width, "stitch width along the course [mm]")->capture_default_str();
   stitch->add_option("--stitch-height", size.height, "stitch height along the wale [mm] (default: the width × 5/6)");
   stitch->add_option("-o,--output", stitch_out, "project to write (.skein)")->required();
@@ -433,7 +441,8 @@ int run_command_line(int argc, char** argv) {
 
   try {
     if (*stitch) {
-      if (!auto_label && stitch_labels.empty()) throw Error("", "skein stitch", "give --auto-label or --labels FILE");
+      if (!auto_label && !trace_field && stitch_labels.empty()) throw Error("", "skein stitch", "give --auto-label, --field or --labels FILE");
+      if (start_edge >= 0 && !auto_label && !trace_field) throw Error("", "skein stitch", "--start-edge needs --auto-label or --field");
       if (!height_given) size.height = size.width * 5.0 / 6.0;
       const auto fabric = resolve_fabric(stitch_fabric, size_given(stitch), false);
       if (fabric.size) size = *fabric.size;
@@ -450,25 +459,41 @@ int run_command_line(int argc, char** argv) {
       mesh::check_stitch_count(m, size, max_stitches);  // before any work that grows with the stitch count
       t = {};
       std::optional<mesh::TessellationValues> stored_values;
-      if (auto_label) {
+      if (trace_field) {
+        mesh::KnitStart knit_start;
+        if (start_point.empty()) {
+          knit_start.border_edge = start_edge >= 0 ? start_edge : mesh::default_start_edge(m);
+        } else {
+          knit_start.point = Eigen::Vector3d(start_point[0], start_point[1], start_point[2]);
+        }
+        auto traced = mesh::trace_stitch_mesh(m, knit_start, size);
+        spdlog::info("traced {} rows on {} isolines of the knitting distance (farthest {:.1f} mm): {} faces, {} cast-on and {} closed-off rows ({:.3f} s)",
+                     traced.labels.rows, traced.levels, traced.field_max, traced.mesh.num_faces(), traced.row_starts, traced.row_ends, t.seconds());
+        project.input = std::move(traced.mesh);
+        project.labels = std::move(traced.labels);
+        stored_values = std::move(traced.values);
+      } else if (auto_label) {
         project.labels = mesh::auto_label(m, start_edge >= 0 ? start_edge : mesh::default_start_edge(m));
       } else {
         auto stored = labels_for(m, stitch_labels);
         project.labels = std::move(stored.first);
         stored_values = std::move(stored.second);
       }
-      const auto report = mesh::validate_labels(m, *project.labels);
+      const mesh::InputMesh& rows_mesh = *project.input;  // the traced rows with --field, else the mesh read
+      const auto report = mesh::validate_labels(rows_mesh, *project.labels);
       spdlog::info("labeled {} rows ({:.3f} s); {} edges with opposite wale directions on their two sides", project.labels->rows, t.seconds(),
                    report.mismatches.size());
-      log_face_problems(stitch_in, m, report, spdlog::level::err);
+      log_face_problems(stitch_in, rows_mesh, report, spdlog::level::err);
       t = {};
-      if (stored_values && !size_given(stitch) && !fabric.size) {
+      if (trace_field) {
+        project.values = std::move(stored_values);  // one stitch a traced face
+      } else if (stored_values && !size_given(stitch) && !fabric.size) {
         project.values = std::move(stored_values);
         spdlog::info("using the tessellation values stored in {}", stitch_labels);
       } else {
-        project.values = mesh::initial_values(m, *project.labels, size);
+        project.values = mesh::initial_values(rows_mesh, *project.labels, size);
       }
-      project.stitch = mesh::tessellate(m, *project.labels, *project.values);
+      project.stitch = mesh::tessellate(rows_mesh, *project.labels, *project.values);
       const auto s = mesh::stitch_stats(*project.stitch);
       spdlog::info("tessellated: {} stitch faces, {} rows, {} increases, {} decreases ({:.3f} s)", s.faces, s.rows, s.increases, s.decreases,
                    t.seconds());
