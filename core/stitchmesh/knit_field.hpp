@@ -25,6 +25,10 @@ struct KnitStart {
   std::optional<Eigen::Vector3d> point;  ///< the mesh's units
 };
 
+/// A row's second continuation shorter than this share of the first is a sliver the field's error cut off at a
+/// border, dropped; a longer one is a branch.
+inline constexpr double kFieldSliver = 0.25;
+
 /// A border turning by more than this [degrees] ends a start run.
 inline constexpr double kFieldCornerDegrees = 40;
 
