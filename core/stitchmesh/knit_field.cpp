@@ -21,6 +21,12 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Surface = CGAL::Surface_mesh<Kernel::Point_3>;
 using SurfaceVertex = Surface::Vertex_index;
 
+std::string mm(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g mm", x);
+  return text;
+}
+
 std::string where(const Eigen::Vector3d& p) {
   char text[96];
   std::snprintf(text, sizeof text, "near (%.4g, %.4g, %.4g)", p.x(), p.y(), p.z());
@@ -51,7 +57,8 @@ std::vector<int> pieces(const InputMesh& surface, int& count) {
 struct FieldSurface {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::array<int, 3>> tris;
-  std::vector<double> t;  ///< the knitting distance at each point
+  std::vector<double> t;      ///< the knitting distance at each point
+  std::vector<double> slope;  ///< the length of its gradient on each triangle (1 for an exact distance)
 };
 
 /// The longest edge the field's triangles keep: half the smaller stitch side, or coarser where that would
@@ -96,31 +103,40 @@ FieldSurface knitting_distance(const InputMesh& surface, double max_edge,
     field.tris.push_back(tri);
   }
   const std::vector<int> from = sources(field.points, on_border);
+  if (from.empty()) throw Error(surface.source(), "", "the knitting start lies on no point of the remeshed surface");
   auto distance = tm.add_property_map<SurfaceVertex, double>("v:knit_distance", 0).first;
-  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<Surface, CGAL::Heat_method_3::Intrinsic_Delaunay> heat(tm);
+  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<Surface, CGAL::Heat_method_3::Direct> heat(tm);
   for (int v : from) heat.add_source(SurfaceVertex(static_cast<Surface::size_type>(v)));
   heat.estimate_geodesic_distances(distance);
   for (auto v : tm.vertices()) field.t.push_back(distance[v]);
   for (int v : from) field.t[static_cast<std::size_t>(v)] = 0;  // the heat method's estimate leaves them near, not at, zero
-  // A distance has a gradient of length 1 (the eikonal equation). The heat method's smoothing shortens it
-  // evenly (a 100 mm square's far border at 97.3 mm), so the field is divided by its area-weighted mean
-  // gradient length and rows come out one stitch height apart.
-  double weighted = 0, total_area = 0;
-  for (const auto& [a, b, c] : field.tris) {
-    const Eigen::Vector3d& pa = field.points[static_cast<std::size_t>(a)];
-    const Eigen::Vector3d e1 = field.points[static_cast<std::size_t>(b)] - pa, e2 = field.points[static_cast<std::size_t>(c)] - pa;
+  // A distance has a gradient of length 1 (the eikonal equation). The heat method's smoothing shortens it,
+  // most near the start (a 100 mm square's far border came out at 97.3 mm): the field is divided by its
+  // area-weighted mean gradient length, and each triangle's own length is kept for spacing the rows.
+  const auto gradient_length = [&](const std::array<int, 3>& tri, double& twice_area) {
+    const Eigen::Vector3d& pa = field.points[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector3d e1 = field.points[static_cast<std::size_t>(tri[1])] - pa, e2 = field.points[static_cast<std::size_t>(tri[2])] - pa;
     const Eigen::Vector3d n = e1.cross(e2);
-    const double twice_area = n.norm();
-    if (!(twice_area > 0)) continue;
-    // The gradient of the linear interpolant: (t_b - t_a) (n x e2) / |n|^2 + (t_c - t_a) (e1 x n) / |n|^2.
-    const double ta = field.t[static_cast<std::size_t>(a)];
-    const Eigen::Vector3d grad = ((field.t[static_cast<std::size_t>(b)] - ta) * n.cross(e2) + (field.t[static_cast<std::size_t>(c)] - ta) * e1.cross(n)) /
+    twice_area = n.norm();
+    if (!(twice_area > 0)) return 1.0;
+    // The gradient of the linear interpolant: ((t_b - t_a) n x e2 + (t_c - t_a) e1 x n) / |n|^2.
+    const double ta = field.t[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector3d grad = ((field.t[static_cast<std::size_t>(tri[1])] - ta) * n.cross(e2) + (field.t[static_cast<std::size_t>(tri[2])] - ta) * e1.cross(n)) /
                                  (twice_area * twice_area);
-    weighted += grad.norm() * twice_area;
+    return grad.norm();
+  };
+  double weighted = 0, total_area = 0;
+  for (const auto& tri : field.tris) {
+    double twice_area = 0;
+    weighted += gradient_length(tri, twice_area) * twice_area;
     total_area += twice_area;
   }
   if (weighted > 0)
     for (double& x : field.t) x *= total_area / weighted;
+  for (const auto& tri : field.tris) {
+    double twice_area = 0;
+    field.slope.push_back(gradient_length(tri, twice_area));
+  }
   return field;
 }
 
@@ -140,7 +156,11 @@ struct Polyline {
 /// The isolines of `t` at `level` by marching triangles. A triangle's crossing runs from the edge where its
 /// loop (counter-clockwise) goes from above the level to below, to the edge where it goes back above: so the
 /// higher field lies to the left of each piece and the pieces of neighbouring triangles chain head to tail.
-std::vector<Polyline> isolines(const FieldSurface& field, double level) {
+struct Isolines {
+  std::vector<Polyline> lines;
+  double slope = 1;  ///< the field's gradient length along them, weighted by length
+};
+Isolines isolines(const FieldSurface& field, double level) {
   const auto& t = field.t;
   std::map<std::pair<int, int>, int> crossing_of;  // undirected edge -> crossing id
   std::vector<Eigen::Vector3d> crossing;
@@ -154,7 +174,9 @@ std::vector<Polyline> isolines(const FieldSurface& field, double level) {
     return it->second;
   };
   std::vector<std::pair<int, int>> pieces;  // from, to
-  for (const auto& tri : field.tris) {
+  double slope_sum = 0, length_sum = 0;
+  for (std::size_t f = 0; f < field.tris.size(); ++f) {
+    const auto& tri = field.tris[f];
     int down = -1, up = -1;
     for (int k = 0; k < 3; ++k) {
       const int u = tri[k], v = tri[(k + 1) % 3];
@@ -162,14 +184,21 @@ std::vector<Polyline> isolines(const FieldSurface& field, double level) {
       if (above_u && !above_v) down = crossing_id(u, v);
       if (!above_u && above_v) up = crossing_id(u, v);
     }
-    if (down >= 0 && up >= 0) pieces.push_back({down, up});
+    if (down >= 0 && up >= 0) {
+      pieces.push_back({down, up});
+      const double l = (crossing[static_cast<std::size_t>(up)] - crossing[static_cast<std::size_t>(down)]).norm();
+      slope_sum += field.slope[f] * l;
+      length_sum += l;
+    }
   }
   std::vector<int> next(crossing.size(), -1), prev(crossing.size(), -1);
   for (auto [a, b] : pieces) {
     next[a] = b;
     prev[b] = a;
   }
-  std::vector<Polyline> lines;
+  Isolines found;
+  if (length_sum > 0) found.slope = slope_sum / length_sum;
+  auto& lines = found.lines;
   std::vector<char> used(crossing.size(), 0);
   const auto follow = [&](int c, bool closed) {
     Polyline line{{}, closed};
@@ -184,7 +213,7 @@ std::vector<Polyline> isolines(const FieldSurface& field, double level) {
     if (prev[c] < 0 && next[c] >= 0) follow(static_cast<int>(c), false);  // from a border edge
   for (std::size_t c = 0; c < crossing.size(); ++c)
     if (!used[c] && next[c] >= 0) follow(static_cast<int>(c), true);
-  return lines;
+  return found;
 }
 
 /// `edges` stitches along the line: edges + 1 points evenly by arclength (edges points when closed).
@@ -204,6 +233,24 @@ Polyline resample(const Polyline& line, int edges) {
     const double f = span > 0 ? std::clamp((s - at[seg]) / span, 0.0, 1.0) : 0.0;
     out.points.push_back(pts[seg] + f * (pts[seg + 1] - pts[seg]));
   }
+  return out;
+}
+
+/// The ring begun at its point nearest to p, so that its stitches start across from the ring below's first.
+Polyline begun_near(const Polyline& ring, const Eigen::Vector3d& p) {
+  const std::size_t n = ring.points.size();
+  std::size_t best_segment = 0;
+  Eigen::Vector3d best_point = ring.points[0];
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& a = ring.points[i];
+    const Eigen::Vector3d d = ring.points[(i + 1) % n] - a;
+    const double s = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Eigen::Vector3d q = a + s * d;
+    if ((q - p).squaredNorm() < best) best = (q - p).squaredNorm(), best_point = q, best_segment = i;
+  }
+  Polyline out{{best_point}, true};
+  for (std::size_t k = 1; k <= n; ++k) out.points.push_back(ring.points[(best_segment + k) % n]);
   return out;
 }
 
@@ -301,12 +348,14 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
   const double tolerance = 1e-9 * surface.bounding_diagonal();
   const auto sources = [&](const std::vector<Eigen::Vector3d>& points, const std::vector<char>& on_border) {
     std::vector<int> from;
+    if (start.point) {  // the remeshing moves inner points: the nearest of the refined surface's
+      int best = 0;
+      for (int v = 1; v < static_cast<int>(points.size()); ++v)
+        if ((points[static_cast<std::size_t>(v)] - *start.point).squaredNorm() < (points[static_cast<std::size_t>(best)] - *start.point).squaredNorm()) best = v;
+      return std::vector<int>{best};
+    }
     for (int v = 0; v < static_cast<int>(points.size()); ++v) {
       const Eigen::Vector3d& p = points[static_cast<std::size_t>(v)];
-      if (start.point) {
-        if ((p - surface.point(start_vertices[0])).norm() <= tolerance) from.push_back(v);
-        continue;
-      }
       if (!on_border[static_cast<std::size_t>(v)]) continue;
       for (const auto& [a, b] : run_segments) {  // on a run edge (split or not)
         const Eigen::Vector3d d = b - a;
@@ -337,12 +386,17 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
   std::vector<PlacedRow> below;
   int rows = 0, levels = 0, starts = 0, ends = 0;
   const double golden = 0.6180339887498949;
+  double next_level = first;
   for (int k = 0;; ++k) {
-    const double level = first + k * size.height;
+    const double level = next_level;
     if (level > field_max - 0.3 * size.height) break;
     ++levels;
+    Isolines found = isolines(field, level);
+    // The next row one stitch height on: the field rises by the height times its gradient length, averaged
+    // between here and the predicted next row (Heun's rule; the length changes fastest near the start).
+    next_level = level + size.height * 0.5 * (found.slope + isolines(field, level + size.height * found.slope).slope);
     std::vector<Polyline> lines;
-    for (auto& line : isolines(field, level)) {
+    for (auto& line : found.lines) {
       const double l = line.length();
       if (line.points.size() < 2 || (line.closed ? l < 2 * size.width : l < 0.5 * size.width)) continue;  // a tip
       lines.push_back(std::move(line));
@@ -350,7 +404,7 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     // Each line's row below: the nearest one, no more than two stitch heights off.
     std::vector<int> match(lines.size(), -1), taken(below.size(), 0);
     const auto refuse = [&](const Eigen::Vector3d& p, const std::string& rule) {
-      throw Error(name, "knitting distance " + std::to_string(level) + " " + where(p), rule);
+      throw Error(name, "knitting distance " + mm(level) + " " + where(p), rule);
     };
     const std::string branch = "the rows split or merge here (the surface branches); knitting one piece across a branch needs short "
                                "rows and joins skein does not make: cut the mesh at the branch, or label it by hand";
@@ -415,6 +469,7 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       } else {
         ++starts;
       }
+      if (match[i] >= 0 && lines[i].closed) lines[i] = begun_near(lines[i], below[match[i]].line.points.front());
       PlacedRow row{resample(lines[i], edges), {}};
       for (const auto& p : row.line.points) {
         row.ids.push_back(static_cast<int>(points.size()));
@@ -465,8 +520,8 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
   }
   ends += static_cast<int>(below.size());
   if (faces.empty())
-    throw Error(name, "", "no row fits: the surface is " + std::to_string(field_max) + " across from the start, less than two stitch heights (" +
-                              std::to_string(size.height) + ")");
+    throw Error(name, "", "no row fits: the surface reaches " + mm(field_max) + " from the start, less than two stitch heights (" +
+                              mm(size.height) + ")");
   // Points no face uses (rows with nothing above or below them alone) are dropped.
   std::vector<int> remap(points.size(), -1);
   std::vector<Eigen::Vector3d> used;

@@ -30,7 +30,7 @@ struct KnitStart {
 inline constexpr double kFieldSliver = 0.25;
 
 /// A border turning by more than this [degrees] ends a start run.
-inline constexpr double kFieldCornerDegrees = 40;
+inline constexpr double kFieldCornerDegrees = 60;
 
 /// The traced rows as a labeled mesh of one face per stitch, with tessellation values of 1 everywhere (so that
 /// tessellate() keeps its faces as they are), and what the trace saw.

@@ -1,0 +1,258 @@
+// Stitch meshes traced from the knitting field (issue 25, part 1) on surfaces nobody labeled: triangulated
+// tubes and sheets, a sphere, a pole of valence 8, and the refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "stitchmesh/knit_field.hpp"
+#include "stitchmesh/stitch_mesh.hpp"
+#include "stitchmesh/yarn_emission.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using skein::testing::error_of;
+
+namespace {
+
+/// A grid of (nx x ny) quads over (u, v) in [0, 1]^2 mapped by `at`, each quad cut into two triangles along a
+/// diagonal that alternates; `wrap` joins the u = 1 column to u = 0 (a tube). `keep(i, j)` leaves quads out.
+template <class At, class Keep>
+mesh::InputMesh triangle_grid(int nx, int ny, bool wrap, At at, Keep keep, const std::string& name) {
+  std::vector<Eigen::Vector3d> points;
+  const int columns = wrap ? nx : nx + 1;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i < columns; ++i) points.push_back(at(static_cast<double>(i) / nx, static_cast<double>(j) / ny));
+  const auto id = [&](int i, int j) { return j * columns + (wrap ? i % nx : i); };
+  std::vector<std::vector<int>> faces;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (!keep(i, j)) continue;
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2) {
+        faces.push_back({a, b, c});
+        faces.push_back({a, c, d});
+      } else {
+        faces.push_back({a, b, d});
+        faces.push_back({b, c, d});
+      }
+    }
+  // Drop points no face uses (the grid's left-out quads).
+  std::vector<int> remap(points.size(), -1);
+  std::vector<Eigen::Vector3d> used;
+  for (auto& f : faces)
+    for (int& v : f) {
+      if (remap[v] < 0) remap[v] = static_cast<int>(used.size()), used.push_back(points[v]);
+      v = remap[v];
+    }
+  return mesh::InputMesh(std::move(used), std::move(faces), name);
+}
+
+mesh::InputMesh tube(double radius, double height) {
+  return triangle_grid(
+      20, 6, true, [&](double u, double v) { return Eigen::Vector3d(radius * std::cos(2 * M_PI * u), height * v, radius * std::sin(2 * M_PI * u)); },
+      [](int, int) { return true; }, "tube.obj");
+}
+
+mesh::InputMesh sheet(double width, double height, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  return triangle_grid(
+      12, 10, false,
+      [&](double u, double v) {  // inner points jittered by up to 0.3 of a grid step
+        const bool inner = u > 0 && u < 1 && v > 0 && v < 1;
+        return Eigen::Vector3d(width * (u + (inner ? jitter(rng) / 12 : 0)), height * (v + (inner ? jitter(rng) / 10 : 0)), 0);
+      },
+      [](int, int) { return true; }, "sheet.obj");
+}
+
+/// An icosahedron split four ways `levels` times onto a sphere: a closed triangle mesh.
+mesh::InputMesh sphere(double radius, int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Eigen::Vector3d> p{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                 {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<std::vector<int>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                  {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                  {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (auto& x : p) x = radius * x.normalized();
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    const auto mid = [&](int a, int b) {
+      auto [it, added] = middle.try_emplace(std::minmax(a, b), static_cast<int>(p.size()));
+      if (added) p.push_back(radius * (p[a] + p[b]).normalized());
+      return it->second;
+    };
+    std::vector<std::vector<int>> next;
+    for (const auto& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(next);
+  }
+  return mesh::InputMesh(std::move(p), std::move(f), "sphere.obj");
+}
+
+/// A shallow dome of quads round a pole of valence 8: 8 quads meet at the pole, then 3 rings of 16 quads, a
+/// border at the rim.
+mesh::InputMesh pole_dome() {
+  const int around = 16, rings = 4;
+  std::vector<Eigen::Vector3d> p{{0, 40, 0}};
+  for (int r = 1; r <= rings; ++r)
+    for (int s = 0; s < around; ++s) {
+      const double a = 2 * M_PI * s / around, rho = 90.0 * r / rings;
+      p.emplace_back(rho * std::cos(a), 40 - rho * rho / 200, rho * std::sin(a));
+    }
+  const auto at = [&](int r, int s) { return 1 + (r - 1) * around + (s % around); };
+  std::vector<std::vector<int>> f;
+  for (int s = 0; s < around; s += 2) f.push_back({0, at(1, s), at(1, s + 1), at(1, s + 2)});
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < around; ++s) f.push_back({at(r, s + 1), at(r, s), at(r + 1, s), at(r + 1, s + 1)});
+  return mesh::InputMesh(std::move(p), std::move(f), "pole.obj");
+}
+
+mesh::StitchMesh stitches_of(const mesh::TracedRows& traced) { return mesh::tessellate(traced.mesh, traced.labels, traced.values); }
+
+/// Every traced row is a stitch row; the stitch mesh obeys Yuksel's rules and emits one continuous yarn per
+/// piece of knitting.
+void expect_valid(const mesh::TracedRows& traced, const std::string& what) {
+  const auto stitch = stitches_of(traced);
+  const auto report = mesh::validate(stitch);
+  ASSERT_TRUE(report.valid()) << what << "\n" << report.summary();
+  EXPECT_EQ(static_cast<int>(stitch.faces.size()), traced.mesh.num_faces()) << what;  // one stitch a traced face
+  const auto yarn = mesh::emit_yarn(stitch, mesh::StitchLibrary::bundled(), {});
+  EXPECT_GE(yarn.curves(), 1) << what;
+}
+
+/// Mean lengths of the traced mesh's wale and course edges.
+std::pair<double, double> edge_means(const mesh::TracedRows& t) {
+  double wale = 0, course = 0;
+  int nw = 0, nc = 0;
+  for (int e = 0; e < t.mesh.num_edges(); ++e) {
+    if (t.labels.edges[e] == mesh::EdgeLabel::Wale) wale += t.mesh.edge_length(e), ++nw;
+    if (t.labels.edges[e] == mesh::EdgeLabel::Course) course += t.mesh.edge_length(e), ++nc;
+  }
+  return {wale / nw, course / nc};
+}
+
+}  // namespace
+
+TEST(KnitField, ATriangulatedTubeKnitsInTheRoundAtTheStitchSize) {
+  const mesh::StitchSize size{6, 5};
+  const auto surface = tube(40, 120);
+  const auto traced = mesh::trace_stitch_mesh(surface, {mesh::default_start_edge(surface), {}}, size);
+  expect_valid(traced, "tube");
+  // 2 pi 40 / 6 = 41.9 stitches a round; rows from 0.25 mm up to 119.75 mm, 5 mm apart: 23 rows of stitches.
+  EXPECT_EQ(traced.labels.rows, 23);
+  EXPECT_EQ(traced.mesh.num_faces(), 23 * 42);
+  EXPECT_EQ(traced.row_starts, 1);
+  EXPECT_EQ(traced.row_ends, 1);
+  EXPECT_NEAR(traced.field_max, 120, 0.6);
+  const auto [wale, course] = edge_means(traced);
+  EXPECT_NEAR(wale, 5, 0.1);
+  EXPECT_NEAR(course, 2 * M_PI * 40 / 42, 0.2);  // chords of the traced ring, a little inside the tube's facets
+  const auto s = mesh::stitch_stats(stitches_of(traced));
+  EXPECT_EQ(s.increases + s.decreases, 0);
+}
+
+TEST(KnitField, AJitteredTriangleSheetGetsStraightRowsOneStitchHeightApart) {
+  const mesh::StitchSize size{6, 5};
+  const auto surface = sheet(120, 100, 3);
+  const auto traced = mesh::trace_stitch_mesh(surface, {mesh::default_start_edge(surface), {}}, size);
+  expect_valid(traced, "sheet");
+  EXPECT_EQ(traced.labels.rows, 19);
+  EXPECT_EQ(traced.mesh.num_faces(), 19 * 20);
+  // The field is the distance from y = 0: row k lies at 0.25 mm + k 5 mm. Each row's mean height is within
+  // 2 % of a row of it (the rows' spacing), and every point within 12 % (the heat method's local error on
+  // this jittered mesh: 0.6 mm at the first rows, where the field is least accurate).
+  std::map<long, std::pair<double, int>> rows;  // row -> sum of offsets, count
+  for (const auto& p : traced.mesh.points()) {
+    const double k = (p.y() - 0.25) / 5;
+    const long row = std::lround(k);
+    EXPECT_NEAR(k, static_cast<double>(row), 0.12) << "a point at y = " << p.y();
+    rows[row].first += k - static_cast<double>(row);
+    ++rows[row].second;
+  }
+  EXPECT_EQ(rows.size(), 20u);
+  for (const auto& [row, sum] : rows) EXPECT_NEAR(sum.first / sum.second, 0, 0.02) << "row " << row;
+}
+
+TEST(KnitField, ASphereKnitsFromAPointWithIncreasesThenDecreases) {
+  const mesh::StitchSize size{6, 5};
+  const auto traced = mesh::trace_stitch_mesh(sphere(50, 4), {-1, Eigen::Vector3d(0, 60, 0)}, size);
+  expect_valid(traced, "sphere");
+  EXPECT_NEAR(traced.field_max, M_PI * 50, 1.5);
+  const auto s = mesh::stitch_stats(stitches_of(traced));
+  EXPECT_GT(s.increases, 20);  // the rows grow to the equator ...
+  EXPECT_GT(s.decreases, 20);  // ... and shrink past it
+  EXPECT_EQ(traced.row_starts, 1);
+  EXPECT_EQ(traced.row_ends, 1);
+  // The cast-on ring: one stitch width round the pole, 2 pi 6 / 6 = 6 stitches.
+  int first_row = 0;
+  for (int f = 0; f < traced.mesh.num_faces(); ++f) first_row += traced.labels.faces[f].row == 0;
+  EXPECT_GE(first_row, 6);
+  EXPECT_LE(first_row, 12);
+  // No row more than doubles or halves (Yuksel Table 1 has 1->2 and 2->1 faces).
+  for (int f = 0; f < traced.mesh.num_faces(); ++f) EXPECT_LE(traced.mesh.face(f).size(), 5u);
+}
+
+TEST(KnitField, APoleOfValenceEightIsKnitFromTheRimAndFromThePole) {
+  const mesh::StitchSize size{6, 5};
+  const auto dome = pole_dome();
+  const auto from_rim = mesh::trace_stitch_mesh(dome, {mesh::default_start_edge(dome), {}}, size);
+  expect_valid(from_rim, "dome from its rim");
+  EXPECT_GT(mesh::stitch_stats(stitches_of(from_rim)).decreases, 10);
+  const auto from_pole = mesh::trace_stitch_mesh(dome, {-1, Eigen::Vector3d(0, 40, 0)}, size);
+  expect_valid(from_pole, "dome from its pole");
+  EXPECT_GT(mesh::stitch_stats(stitches_of(from_pole)).increases, 10);
+}
+
+TEST(KnitField, TheStartRunStopsAtCornersAndGoesRoundATubeEnd) {
+  const auto flat = sheet(120, 100, 5);
+  const auto run = mesh::field_start_run(flat, mesh::default_start_edge(flat));
+  EXPECT_EQ(run.size(), 12u);  // the bottom side's 12 edges, not round the corners
+  for (int e : run) {
+    const auto [a, b] = flat.edge_vertices(e);
+    EXPECT_EQ(flat.point(a).y(), 0);
+    EXPECT_EQ(flat.point(b).y(), 0);
+  }
+  const auto round = tube(40, 120);
+  EXPECT_EQ(mesh::field_start_run(round, mesh::default_start_edge(round)).size(), 20u);
+}
+
+TEST(KnitField, RefusesWhatItCannotKnitSayingWhereAndWhy) {
+  const mesh::StitchSize size{6, 5};
+  const auto flat = sheet(120, 100, 7);
+  int inner = -1;
+  for (int e = 0; e < flat.num_edges() && inner < 0; ++e)
+    if (!flat.is_border(e)) inner = e;
+  EXPECT_EQ(error_of([&] { mesh::trace_stitch_mesh(flat, {inner, {}}, size); }),
+            "sheet.obj: edge " + std::to_string(inner) + ": is not a border edge; knitting starts on a border or at a point (--start-point)");
+
+  // A U: the rows split round the slot cut down from the top (the surface branches).
+  const auto u_shape = triangle_grid(
+      12, 12, false, [](double u, double v) { return Eigen::Vector3d(120 * u, 120 * v, 0); }, [](int i, int j) { return !(j >= 6 && i >= 4 && i < 8); },
+      "u.obj");
+  const std::string branch = error_of([&] { mesh::trace_stitch_mesh(u_shape, {mesh::default_start_edge(u_shape), {}}, size); });
+  EXPECT_NE(branch.find("u.obj: knitting distance 6"), std::string::npos) << branch;  // at the slot's foot, 60 mm up
+  EXPECT_NE(branch.find("the rows split or merge here (the surface branches)"), std::string::npos) << branch;
+
+  // Two pieces: the start reaches one.
+  const auto one = tube(40, 120);
+  auto points = one.points();
+  auto faces = one.faces();
+  const int offset = static_cast<int>(points.size());
+  for (const auto& p : one.points()) points.push_back(p + Eigen::Vector3d(200, 0, 0));
+  for (auto f : one.faces()) {
+    for (int& v : f) v += offset;
+    faces.push_back(f);
+  }
+  const mesh::InputMesh two(points, faces, "two.obj");
+  const std::string pieces = error_of([&] { mesh::trace_stitch_mesh(two, {mesh::default_start_edge(two), {}}, size); });
+  EXPECT_NE(pieces.find("lies on a piece of the surface the knitting start does not reach (2 pieces)"), std::string::npos) << pieces;
+
+  // Too small for a row.
+  const auto small = sheet(12, 4, 1);
+  const std::string tiny = error_of([&] { mesh::trace_stitch_mesh(small, {mesh::default_start_edge(small), {}}, size); });
+  EXPECT_NE(tiny.find("no row fits"), std::string::npos) << tiny;
+}
