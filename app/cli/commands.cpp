@@ -262,7 +262,7 @@ void log_face_problems(const std::string& file, const mesh::InputMesh& mesh, con
     total += n;
   }
   spdlog::log(level, "{}: {} of these {} faces are not quads ({}): rows are labeled across quads (Yuksel 2012 §5), so a mesh of triangles "
-              "or other polygons needs remeshing to quads first", file, total, report.face_problems.size(), kinds);
+              "or other polygons is traced with `skein stitch MESH --field` instead (rows from the knitting distance)", file, total, report.face_problems.size(), kinds);
 }
 
 json guard_json(const relax::GuardCounters& g) {

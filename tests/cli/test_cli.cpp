@@ -160,8 +160,30 @@ TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
     EXPECT_NE(r.output.find("... and 62 more faces like these"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("72 of these 72 faces are not quads (72 triangles): rows are labeled across quads"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("face 10:"), std::string::npos) << r.output;  // ten listed, not 72
+    EXPECT_NE(r.output.find("is traced with `skein stitch MESH --field` instead"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "t.skein"));
   }
+  // The way the message points to: the rows traced on the triangles, 60 / 6 = 10 stitches a row, a row
+  // every 5 mm from 0.25 mm to 58.5 mm: 11 rows.
+  const auto out = dir / "t.skein";
+  const auto traced = run_skein("stitch " + mesh.string() + " --field -o " + out.string() + " --stats " + (dir / "s.json").string());
+  ASSERT_EQ(traced.status, 0) << traced.output;
+  EXPECT_NE(traced.output.find("traced 11 rows on 12 isolines of the knitting distance (farthest 60."), std::string::npos) << traced.output;
+  EXPECT_NE(traced.output.find("mm): 110 faces, 1 cast-on and 1 closed-off rows"), std::string::npos) << traced.output;
+  const auto stats = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(stats["faces"], 110);
+  EXPECT_EQ(stats["valid"], true);
+  EXPECT_EQ(run_skein("yarn " + out.string() + " -o " + (dir / "y.bcc").string()).status, 0);
+  // Refusals: exit 2, the file and the place named, nothing written.
+  std::filesystem::remove(out);
+  const auto inner = run_skein("stitch " + mesh.string() + " --field --start-edge 500 -o " + out.string());  // 120 edges
+  EXPECT_EQ(inner.status, 2);
+  EXPECT_NE(inner.output.find("tris.obj: edge 500: is not a border edge; knitting starts on a border or at a point (--start-point)"), std::string::npos)
+      << inner.output;
+  const auto no_field = run_skein("stitch " + mesh.string() + " --auto-label --start-point 1,2,3 -o " + out.string());
+  EXPECT_NE(no_field.status, 0);
+  EXPECT_NE(no_field.output.find("--start-point requires --field"), std::string::npos) << no_field.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(Cli, YarnObjInMetresForBlenderAndTheStitchIdsBesideIt) {
