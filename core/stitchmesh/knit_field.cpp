@@ -254,15 +254,16 @@ Polyline begun_near(const Polyline& ring, const Eigen::Vector3d& p) {
   return out;
 }
 
-/// Mean distance from b's points to their nearest points of a.
-double mean_gap(const Polyline& a, const Polyline& b) {
-  double sum = 0;
-  for (const auto& p : b.points) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& q : a.points) best = std::min(best, (p - q).squaredNorm());
-    sum += std::sqrt(best);
-  }
-  return sum / static_cast<double>(b.points.size());
+/// The share of b's points that lie within `reach` of a point of a.
+double near_share(const Polyline& a, const Polyline& b, double reach) {
+  int near = 0;
+  for (const auto& p : b.points)
+    for (const auto& q : a.points)
+      if ((p - q).squaredNorm() <= reach * reach) {
+        ++near;
+        break;
+      }
+  return static_cast<double>(near) / static_cast<double>(b.points.size());
 }
 
 /// A sampled row placed in the traced mesh: its vertex ids, left to right.
@@ -271,6 +272,11 @@ struct PlacedRow {
   std::vector<int> ids;
   int edges() const { return line.closed ? static_cast<int>(ids.size()) : static_cast<int>(ids.size()) - 1; }
 };
+
+/// The first of face f's share of `big` edges among m faces: floor(f big / m + phase), the last face's end at big.
+int share_start(int f, int m, int big, double phase) {
+  return f >= m ? big : static_cast<int>(std::floor(static_cast<double>(f) * big / m + phase));
+}
 
 /// Turning angle of the border at v between the directions in and out [degrees].
 double turn_degrees(const Eigen::Vector3d& in, const Eigen::Vector3d& out) {
@@ -386,9 +392,115 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
   std::vector<PlacedRow> below;
   int rows = 0, levels = 0, starts = 0, ends = 0;
   const double golden = 0.6180339887498949;
+  const double reach = 1.6 * size.height;  // a row and a half, and the distance between a row's samples
+  double level = first;
+  const auto refuse_at = [&](const Eigen::Vector3d& p, const std::string& rule) {
+    throw Error(name, "knitting distance " + mm(level) + " " + where(p), rule);
+  };
+  // A stretch of a row: `edges` edges from index `from` on (round a ring as far as it goes).
+  const auto path = [](const PlacedRow& row, int from, int edges) {
+    std::vector<int> ids;
+    const int n = static_cast<int>(row.ids.size());
+    for (int i = 0; i <= edges; ++i) ids.push_back(row.ids[static_cast<std::size_t>(row.line.closed ? (from + i) % n : from + i)]);
+    return ids;
+  };
+  // Joins a stretch of the row below (a) to one of the row above (b), both left to right: min(na, nb) faces,
+  // the longer one's edges shared out evenly from `phase` on, so that increases and decreases spread along
+  // the row (the phase moves on by the golden ratio each row, so that they do not stack in a column).
+  const auto add_strip = [&](const std::vector<int>& a, const std::vector<int>& b, double phase) {
+    const int na = static_cast<int>(a.size()) - 1, nb = static_cast<int>(b.size()) - 1;
+    if (na < 1 || nb < 1) return;
+    const int m = std::min(na, nb), big = std::max(na, nb);
+    if (big > 3 * m) refuse_at(points[static_cast<std::size_t>(a.front())], "the rows change length more than threefold here (no stitch has more than three top or bottom edges)");
+    for (int f = 0; f < m; ++f) {
+      const int s0 = share_start(f, m, big, phase), s1 = share_start(f + 1, m, big, phase);
+      const int a0 = na >= nb ? s0 : f, a1 = na >= nb ? s1 : f + 1;
+      const int b0 = nb > na ? s0 : f, b1 = nb > na ? s1 : f + 1;
+      std::vector<int> loop;
+      for (int i = a0; i <= a1; ++i) loop.push_back(a[static_cast<std::size_t>(i)]);
+      for (int i = b1; i >= b0; --i) loop.push_back(b[static_cast<std::size_t>(i)]);
+      faces.push_back(std::move(loop));
+      face_rows.push_back({a1 - a0, b1 - b0});
+      face_row.push_back(rows);
+    }
+    ++rows;
+  };
+  // Where a row meets several (a split above it, or a merge below): each edge of `whole` goes with the
+  // nearest of `partners` within reach (runs of fewer than three edges join the run before them), and each
+  // run is joined to the stretch of its partner across from it. Edges with no partner in reach, and what a
+  // partner keeps of its own, are borders there: cast on above a split (a crotch, an underarm), closed off
+  // below a merge or under a slot.
+  const auto join_runs = [&](const PlacedRow& whole, const std::vector<int>& partners, const std::vector<PlacedRow>& others, bool whole_above, double phase) {
+    const int n = whole.edges(), count = static_cast<int>(whole.line.points.size());
+    const auto point = [&](int i) { return whole.line.points[static_cast<std::size_t>(i % count)]; };
+    const auto nearest_in = [](const PlacedRow& row, const Eigen::Vector3d& p) {
+      int best = 0;
+      for (int i = 1; i < static_cast<int>(row.line.points.size()); ++i)
+        if ((row.line.points[static_cast<std::size_t>(i)] - p).squaredNorm() < (row.line.points[static_cast<std::size_t>(best)] - p).squaredNorm()) best = i;
+      return best;
+    };
+    std::vector<int> label(static_cast<std::size_t>(n), -1);  // -1: no partner within reach (closed off / cast on)
+    for (int e = 0; e < n; ++e) {
+      const Eigen::Vector3d mid = 0.5 * (point(e) + point(e + 1));
+      double best = reach * reach;
+      for (int p : partners)
+        for (const auto& q : others[static_cast<std::size_t>(p)].line.points)
+          if ((q - mid).squaredNorm() < best) best = (q - mid).squaredNorm(), label[static_cast<std::size_t>(e)] = p;
+    }
+    struct Run { int partner, from, edges; };
+    std::vector<Run> runs;
+    for (bool changed = true; changed;) {
+      runs.clear();
+      for (int e = 0; e < n; ++e) {
+        if (runs.empty() || runs.back().partner != label[static_cast<std::size_t>(e)]) runs.push_back({label[static_cast<std::size_t>(e)], e, 0});
+        ++runs.back().edges;
+      }
+      if (whole.line.closed && runs.size() > 1 && runs.front().partner == runs.back().partner) {  // a ring's run across its start
+        runs.front().from = runs.back().from;
+        runs.front().edges += runs.back().edges;
+        runs.pop_back();
+      }
+      changed = false;
+      for (std::size_t r = 0; r < runs.size() && runs.size() > 1; ++r)
+        if (runs[r].edges < 3) {
+          const int into = runs[(r + runs.size() - 1) % runs.size()].partner;
+          for (int e = 0; e < runs[r].edges; ++e) label[static_cast<std::size_t>((runs[r].from + e) % n)] = into;
+          changed = true;
+          break;
+        }
+    }
+    std::map<int, std::vector<char>> covered;  // partner -> its edges joined so far (a partner may meet several runs)
+    for (const Run& run : runs) {
+      if (run.partner < 0) continue;
+      // The partner's stretch across from the run: each point of the run's nearest on the partner, followed
+      // round the partner by its shortest steps (so a run the partner meets only at its ends, as at a crotch,
+      // still spans the partner's side that faces it).
+      const PlacedRow& other = others[static_cast<std::size_t>(run.partner)];
+      const int m = other.edges(), from = nearest_in(other, point(run.from));
+      int edges = 0;
+      for (int v = 1, previous = from; v <= run.edges; ++v) {
+        const int at = nearest_in(other, point(run.from + v));
+        int step = at - previous;
+        if (other.line.closed) step = ((step % m) + m + m / 2) % m - m / 2;
+        edges += step;
+        previous = at;
+      }
+      edges = std::min(edges, m);
+      if (edges < 1) continue;
+      auto& used = covered.try_emplace(run.partner, static_cast<std::size_t>(m), 0).first->second;
+      for (int e = 0; e < edges; ++e) {
+        char& edge = used[static_cast<std::size_t>(other.line.closed ? (from + e) % m : from + e)];
+        if (edge) refuse_at(point(run.from), "the rows split or merge unevenly here (two stretches of a row meet one stretch of another); cut the mesh at the branch, or label it by hand");
+        edge = 1;
+      }
+      const auto mine = path(whole, run.from, run.edges), theirs = path(other, from, edges);
+      if (whole_above) add_strip(theirs, mine, phase);
+      else add_strip(mine, theirs, phase);
+    }
+  };
   double next_level = first;
   for (int k = 0;; ++k) {
-    const double level = next_level;
+    level = next_level;
     if (level > field_max - 0.3 * size.height) break;
     ++levels;
     Isolines found = isolines(field, level);
@@ -401,121 +513,125 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       if (line.points.size() < 2 || (line.closed ? l < 2 * size.width : l < 0.5 * size.width)) continue;  // a tip
       lines.push_back(std::move(line));
     }
-    // Each line's row below: the nearest one, no more than two stitch heights off.
-    std::vector<int> match(lines.size(), -1), taken(below.size(), 0);
-    const auto refuse = [&](const Eigen::Vector3d& p, const std::string& rule) {
-      throw Error(name, "knitting distance " + mm(level) + " " + where(p), rule);
-    };
-    const std::string branch = "the rows split or merge here (the surface branches); knitting one piece across a branch needs short "
-                               "rows and joins skein does not make: cut the mesh at the branch, or label it by hand";
+    // Each line's row below: the one most of its points lie next to (within `reach`), if a quarter of them
+    // do; at a branch a line runs next to the row below only on its outer side.
+    std::vector<int> match(lines.size(), -1);
+    const auto& refuse = refuse_at;
     for (std::size_t i = 0; i < lines.size(); ++i) {
-      double best = 2 * size.height;
+      double best = kFieldSliver;
       for (std::size_t j = 0; j < below.size(); ++j) {
-        const double gap = mean_gap(below[j].line, lines[i]);
-        if (gap < best) best = gap, match[i] = static_cast<int>(j);
+        const double share = near_share(below[j].line, lines[i], reach);
+        if (share >= best) best = share, match[i] = static_cast<int>(j);
       }
     }
-    // A row that goes on as two lines: the longer goes on; the other is a sliver the field's error cut off at a
-    // border (dropped) when it is under a quarter of it, else the surface branches. Pieces that together are
-    // under half the row below are its end running into a far border, as the field's error frays it.
+    // Pieces of a row's continuation under a quarter of its longest are slivers the field's error cut off at a
+    // border (dropped); pieces that together are under half the row below are its end running into a far
+    // border, as the field's error frays it (all dropped).
     std::vector<char> dropped(lines.size(), 0);
     for (std::size_t j = 0; j < below.size(); ++j) {
-      int longest = -1;
-      for (std::size_t i = 0; i < lines.size(); ++i)
-        if (match[i] == static_cast<int>(j) && (longest < 0 || lines[i].length() > lines[static_cast<std::size_t>(longest)].length())) longest = static_cast<int>(i);
-      double going_on = 0;
+      double longest = 0, going_on = 0;
       int count = 0;
       for (std::size_t i = 0; i < lines.size(); ++i)
-        if (match[i] == static_cast<int>(j)) going_on += lines[i].length(), ++count;
-      if (count > 1 && going_on < 0.5 * below[j].line.length()) {  // the row runs into a far border in pieces: it ends
-        for (std::size_t i = 0; i < lines.size(); ++i)
-          if (match[i] == static_cast<int>(j)) dropped[i] = 1;
-        continue;
-      }
-      for (std::size_t i = 0; i < lines.size(); ++i) {
-        if (match[i] != static_cast<int>(j) || static_cast<int>(i) == longest) continue;
-        if (lines[i].length() >= kFieldSliver * lines[static_cast<std::size_t>(longest)].length()) refuse(lines[i].points.front(), branch);
-        dropped[i] = 1;
-      }
-      if (longest >= 0) {
-        taken[j] = 1;
-        const Polyline& line = lines[static_cast<std::size_t>(longest)];
-        if (below[j].line.closed != line.closed)
-          refuse(line.points.front(), std::string("the rows ") + (line.closed ? "leave" : "reach") +
-                                          " a border unevenly here (a ring becomes a row with ends); start from that border instead");
-      }
+        if (match[i] == static_cast<int>(j)) longest = std::max(longest, lines[i].length()), going_on += lines[i].length(), ++count;
+      for (std::size_t i = 0; i < lines.size(); ++i)
+        if (match[i] == static_cast<int>(j) && count > 1 && (going_on < 0.5 * below[j].line.length() || lines[i].length() < kFieldSliver * longest))
+          dropped[i] = 1;
     }
-    for (std::size_t j = 0; j < below.size(); ++j) {
-      if (taken[j]) continue;
-      for (std::size_t i = 0; i < lines.size(); ++i)  // a row that ends where another goes on beside it: a merge
-        if (!dropped[i] && mean_gap(lines[i], below[j].line) < size.height && below[j].line.length() >= kFieldSliver * lines[i].length())
-          refuse(below[j].line.points.front(), branch);
-      ++ends;
+    {
+      std::vector<Polyline> kept;
+      std::vector<int> kept_match;
+      for (std::size_t i = 0; i < lines.size(); ++i)
+        if (!dropped[i]) kept.push_back(std::move(lines[i])), kept_match.push_back(match[i]);
+      lines = std::move(kept);
+      match = std::move(kept_match);
     }
-    std::vector<Polyline> kept;
-    std::vector<int> kept_match;
+    // Branches: a row below that goes on as several lines splits (ups), a line that a second row below ends
+    // beside is where rows merge (downs). A row below with no line ends (closed off); a line with none starts.
+    std::vector<std::vector<int>> ups(below.size()), downs(lines.size());
     for (std::size_t i = 0; i < lines.size(); ++i)
-      if (!dropped[i]) kept.push_back(std::move(lines[i])), kept_match.push_back(match[i]);
-    lines = std::move(kept);
-    match = std::move(kept_match);
+      if (match[i] >= 0) ups[static_cast<std::size_t>(match[i])].push_back(static_cast<int>(i)), downs[i].push_back(match[i]);
+    for (std::size_t j = 0; j < below.size(); ++j) {
+      if (!ups[j].empty()) continue;
+      int beside = -1;
+      double best = kFieldSliver;
+      for (std::size_t i = 0; i < lines.size(); ++i) {
+        const double share = near_share(lines[i], below[j].line, reach);
+        if (share >= best) best = share, beside = static_cast<int>(i);
+      }
+      if (beside >= 0) {
+        downs[static_cast<std::size_t>(beside)].push_back(static_cast<int>(j));
+        ups[j].push_back(beside);
+      } else {
+        ++ends;
+      }
+    }
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (downs[i].size() < 2) continue;
+      for (int j : downs[i])
+        if (ups[static_cast<std::size_t>(j)].size() > 1)
+          refuse(lines[i].points.front(), "the rows split and merge at once here; cut the mesh at the branch, or label it by hand");
+    }
+    // A line that goes on from one row alone, both rings or both rows with ends: joined stitch for stitch. A ring
+    // that runs into a border unevenly (a sleeve's slanted cuff) goes on as a row with ends: joined as at a
+    // branch, the rest of the ring closed off (or, the other way round, cast on).
+    const auto one_to_one = [&](std::size_t i) {
+      return downs[i].size() == 1 && ups[static_cast<std::size_t>(downs[i][0])].size() == 1 &&
+             below[static_cast<std::size_t>(downs[i][0])].line.closed == lines[i].closed;
+    };
+    const auto ring_to_row = [&](std::size_t i) {
+      return downs[i].size() == 1 && ups[static_cast<std::size_t>(downs[i][0])].size() == 1 && !one_to_one(i);
+    };
+    // Sample every line at the stitch width; a row continuing one row below changes its count at most by a
+    // doubling or a halving (Yuksel Table 1's increases and decreases).
     std::vector<PlacedRow> placed;
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const double l = lines[i].length();
       int edges = std::max(lines[i].closed ? 3 : 1, static_cast<int>(std::lround(l / size.width)));
-      if (match[i] >= 0) {  // at most a doubling or a halving per row (Yuksel Table 1's increases and decreases)
-        const int n = below[match[i]].edges();
+      if (downs[i].empty()) ++starts;
+      if (one_to_one(i)) {
+        const PlacedRow& a = below[static_cast<std::size_t>(downs[i][0])];
+        const int n = a.edges();
         edges = std::clamp(edges, (n + 1) / 2, 2 * n);
         if (lines[i].closed) edges = std::max(edges, 3);
-      } else {
-        ++starts;
+        if (lines[i].closed) lines[i] = begun_near(lines[i], a.line.points.front());
       }
-      if (match[i] >= 0 && lines[i].closed) lines[i] = begun_near(lines[i], below[match[i]].line.points.front());
       PlacedRow row{resample(lines[i], edges), {}};
       for (const auto& p : row.line.points) {
         row.ids.push_back(static_cast<int>(points.size()));
         points.push_back(p);
       }
-      if (match[i] >= 0) {
-        // Join the row below (a) to this one (b): min(na, nb) faces, the longer row's edges shared out evenly,
-        // the share's phase moving on by the golden ratio each row so that increases do not stack in a column.
-        const PlacedRow& a = below[match[i]];
-        const int na = a.edges(), nb = row.edges(), m = std::min(na, nb), big = std::max(na, nb);
-        const double phase = row.line.closed ? std::fmod(k * golden, 1.0) : 0.0;
-        const auto split = [&](int f) { return static_cast<int>(std::floor(static_cast<double>(f) * big / m + (f == m ? 0 : phase))); };
-        const auto at = [](const PlacedRow& r, int i) { return r.ids[static_cast<std::size_t>(r.line.closed ? i % static_cast<int>(r.ids.size()) : i)]; };
-        const auto ends_of = [&](int f) {  // face f's first bottom and first top point
-          const int share = f == m ? big : split(f);
-          return std::pair{na >= nb ? share : f, nb > na ? share : f};
-        };
-        if (row.line.closed) {  // turn the ring so that its wale edges are as short as they can be (no twist)
-          const int n = static_cast<int>(row.line.points.size());
-          int best_turn = 0;
-          double best = std::numeric_limits<double>::infinity();
-          for (int turn = 0; turn < n; ++turn) {
-            double cost = 0;
-            for (int f = 0; f < m && cost < best; ++f) {
-              const auto [ia, ib] = ends_of(f);
-              cost += (a.line.points[static_cast<std::size_t>(ia % na)] - row.line.points[static_cast<std::size_t>((ib + turn) % n)]).squaredNorm();
-            }
-            if (cost < best) best = cost, best_turn = turn;
-          }
-          std::rotate(row.ids.begin(), row.ids.begin() + best_turn, row.ids.end());
-          std::rotate(row.line.points.begin(), row.line.points.begin() + best_turn, row.line.points.end());
-        }
-        for (int f = 0; f < m; ++f) {
-          const auto [a0, b0] = ends_of(f);
-          const auto [a1, b1] = ends_of(f + 1);
-          std::vector<int> loop;
-          for (int i = a0; i <= a1; ++i) loop.push_back(at(a, i));
-          for (int i = b1; i >= b0; --i) loop.push_back(at(row, i));
-          faces.push_back(std::move(loop));
-          face_rows.push_back({a1 - a0, b1 - b0});
-          face_row.push_back(rows);
-        }
-        ++rows;
-      }
       placed.push_back(std::move(row));
     }
+    const double phase = std::fmod(k * golden, 1.0);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (!one_to_one(i)) continue;
+      PlacedRow& b = placed[i];
+      const PlacedRow& a = below[static_cast<std::size_t>(downs[i][0])];
+      if (b.line.closed) {  // turn the ring so that its wale edges are as short as they can be (no twist)
+        const int na = a.edges(), nb = b.edges(), m = std::min(na, nb), big = std::max(na, nb);
+        int best_turn = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (int turn = 0; turn < nb; ++turn) {
+          double cost = 0;
+          for (int f = 0; f < m && cost < best; ++f) {
+            const int share = share_start(f, m, big, phase);
+            const int ia = na >= nb ? share : f, ib = nb > na ? share : f;
+            cost += (a.line.points[static_cast<std::size_t>(ia % na)] - b.line.points[static_cast<std::size_t>((ib + turn) % nb)]).squaredNorm();
+          }
+          if (cost < best) best = cost, best_turn = turn;
+        }
+        std::rotate(b.ids.begin(), b.ids.begin() + best_turn, b.ids.end());
+        std::rotate(b.line.points.begin(), b.line.points.begin() + best_turn, b.line.points.end());
+      }
+      add_strip(path(a, 0, a.edges()), path(b, 0, b.edges()), b.line.closed ? phase : 0.0);
+    }
+    // Splits: each edge of the row below goes on into the nearest of its lines; each run of edges so shared
+    // is joined to the stretch of its line across from it, and the rest of that line starts there (cast on,
+    // as a crotch or an underarm is). Merges the other way round: the rest of a row below is closed off.
+    for (std::size_t j = 0; j < below.size(); ++j)
+      if (ups[j].size() > 1) join_runs(below[j], ups[j], placed, false, phase);
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (downs[i].size() > 1 || ring_to_row(i)) join_runs(placed[i], downs[i], below, true, phase);
     below = std::move(placed);
   }
   ends += static_cast<int>(below.size());
