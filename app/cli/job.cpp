@@ -21,6 +21,7 @@
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/fabric.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 
@@ -114,7 +115,9 @@ Job parse_job(const std::string& text, const fs::path& file) {
   job.name = k.text("name", file.stem().string());
   if (!k.has("mesh")) k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project)");
   job.mesh = k.file("mesh");
-  if (k.text("labels", "auto") != "auto") job.labels = k.file("labels");
+  const std::string labels = k.text("labels", "auto");
+  if (labels == "field") job.field = true;
+  else if (labels != "auto") job.labels = k.file("labels");
   if (k.has("stitch_size")) {
     const Keys size(k.at("stitch_size"), "stitch_size", file);
     size.only({"width", "height"});
@@ -242,7 +245,13 @@ int run_job(const Job& job, bool resume, bool progress) {
     project.stitch_size = job.stitch_size;
     run.stage("load and label", [&] {
       project.input = load_input(job.mesh);
-      if (job.labels.empty()) {
+      if (job.field) {  // the traced rows become the project's input mesh, one stitch a face
+        mesh::check_stitch_count(*project.input, job.stitch_size, job.max_stitches);  // before tracing, which grows with it
+        auto traced = mesh::trace_stitch_mesh(*project.input, {mesh::default_start_edge(*project.input), {}}, job.stitch_size);
+        project.input = std::move(traced.mesh);
+        project.labels = std::move(traced.labels);
+        project.values = std::move(traced.values);
+      } else if (job.labels.empty()) {
         project.labels = mesh::auto_label(*project.input, mesh::default_start_edge(*project.input));
       } else {
         auto [labels, values] = labels_for(*project.input, job.labels);

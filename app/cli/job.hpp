@@ -26,7 +26,8 @@ struct Job {
   std::filesystem::path file;    ///< the job file; relative paths in it are relative to its folder
   std::string name;
   std::filesystem::path mesh;
-  std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label
+  std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label (or the field)
+  bool field = false;            ///< "labels": "field": rows traced from the knitting field (issue 25)
   mesh::StitchSize stitch_size;
   double max_stitches = mesh::kDefaultMaxStitches;  ///< refused past this estimate (check_stitch_count)
   std::vector<JobEdit> edits;

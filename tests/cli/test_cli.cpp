@@ -12,6 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <iterator>
+
 #include <nlohmann/json.hpp>
 
 #include "relax/yarn_io.hpp"
@@ -812,6 +814,32 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
   EXPECT_NEAR(relaxed.at("fabric").at("yarn_per_stitch_mm").get<double>(), 0.95 * munden / to_munden, 1e-6 * munden);
   // Refused where a weight's compressed contact cannot hold: a preview that keeps the emitted radius.
   expect_refused("relax-yarn " + project + " --yarn dk --stand-in", dir / "s.bcc", "--yarn: relaxes a whole garment");
+}
+
+TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {
+  // Issue 25: "labels": "field" traces the rows on any surface, here the bundled swatch fanned into triangles.
+  ScratchDir dir;
+  std::string obj;
+  std::istringstream in(slurp(kModels + "/swatch.obj"));
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("f ", 0) != 0) {
+      obj += line + "\n";
+      continue;
+    }
+    std::istringstream f(line.substr(2));
+    std::vector<std::string> corners{std::istream_iterator<std::string>(f), {}};
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k) obj += "f " + corners[0] + " " + corners[k] + " " + corners[k + 1] + "\n";
+  }
+  const auto mesh = dir.write("swatch-triangles.obj", obj);
+  const auto job = dir.write("job.json", R"({"name": "field", "mesh": ")" + mesh.string() + R"(", "labels": "field",
+    "stitch_size": {"width": 12, "height": 10}, "relax_yarn": {"max_steps": 40}, "pictures": false})");
+  const auto r = run_skein("-q run " + job.string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
+  EXPECT_EQ(report.at("status"), "done");
+  // 120 x 100 mm at 12 x 10 mm stitches: 10 stitches a row, 9 rows (the last row's top short of the far border).
+  EXPECT_EQ(report.at("stitch_mesh").at("faces"), 90) << report.dump(1);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "yarn-relaxed.bcc"));
 }
 
 TEST(Job, SigtermLeavesACheckpointToResumeFrom) {
