@@ -3,6 +3,7 @@
 #include <QUndoCommand>
 
 #include "common/error.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/tessellation.hpp"
 
 namespace skein::gui {
@@ -118,6 +119,22 @@ void Document::auto_label(int border_edge) {
   require_input();
   const int start = border_edge >= 0 ? border_edge : mesh::default_start_edge(*m_input);
   apply(tr("Auto-label"), with_labels(mesh::auto_label(*m_input, start)));
+}
+
+void Document::trace_field(int border_edge) {
+  require_input();
+  const int start = border_edge >= 0 ? border_edge : mesh::default_start_edge(*m_input);
+  auto traced = mesh::trace_stitch_mesh(*m_input, {start, {}}, m_state.stitch_size);
+  EditState state;
+  state.stitch_size = m_state.stitch_size;
+  state.stitch = mesh::tessellate(traced.mesh, traced.labels, traced.values);
+  state.labels = std::move(traced.labels);
+  state.values = std::move(traced.values);
+  m_input = std::move(traced.mesh);
+  m_state = std::move(state);
+  m_undo.clear();
+  emit opened();
+  emit changed();
 }
 
 void Document::label_first_row(int border_edge) {

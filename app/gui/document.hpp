@@ -69,6 +69,10 @@ public:
 
   // Labeling (Yuksel 2012 §5.1)
   void auto_label(int border_edge = -1);  ///< -1: the lowest border edge
+  /// Traces the rows on any surface from the knitting field (mesh::trace_stitch_mesh, from `border_edge` or
+  /// the lowest border edge): the traced rows, one face a stitch, replace the input mesh, labeled, with the
+  /// stitch mesh generated. Like opening a file, this clears the undo history.
+  void trace_field(int border_edge = -1);
   void label_first_row(int border_edge);
   void label_next_row(int course_edge);
   void flip_row(int row);

@@ -199,6 +199,7 @@ void MainWindow::build_actions() {
   auto* label = menuBar()->addMenu(tr("&Label"));
   tool(label, tr("&Orbit"), "toolOrbit", Tool::Orbit, tr("Left-drag turns the view"))->setChecked(true);
   add(label, tr("&Auto-label"), "autoLabel", [this] { attempt([&] { m_doc.auto_label(); }); }, QKeySequence(tr("Ctrl+L")), true);
+  add(label, tr("&Trace rows from the knitting field (any surface)"), "traceField", [this] { attempt([&] { m_doc.trace_field(); }); }, {}, true);
   tool(label, tr("&First row"), "toolFirstRow", Tool::FirstRow, tr("Click a border edge: its border becomes the first row"));
   tool(label, tr("&Next row"), "toolNextRow", Tool::NextRow, tr("Click a course edge of a labeled row: label the row across it"));
   tool(label, tr("F&lip row"), "toolFlipRow", Tool::FlipRow, tr("Click a face: flip the wale direction of its row"));
@@ -277,7 +278,8 @@ void MainWindow::build_actions() {
     QMessageBox::information(this, tr("Controls"),
                              tr("Right-drag: orbit. Middle-drag or Shift+right-drag: pan. Wheel: zoom. F: fit the view.\n"
                                 "Left button: the active tool (Orbit turns the view).\n"
-                                "Label: Auto-label, or First row on a border edge, then Next row on course edges.\n"
+                                "Label: Auto-label, or First row on a border edge, then Next row on course edges;\n"
+                                "any surface (triangles, poles, branches): Trace rows from the knitting field.\n"
                                 "Stitch: Generate the stitch mesh; Tessellation value and Mark wale edge change it.\n"
                                 "Paint: pick a stitch type in the palette and paint; fills and patterns act on the selection."));
   });

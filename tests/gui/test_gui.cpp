@@ -164,6 +164,35 @@ private slots:
     }
   }
 
+  void a_triangle_mesh_is_traced_from_the_knitting_field() {
+    // Issue 25: Label > Trace rows: a triangle sheet nobody can auto-label gets its rows, labels and stitch mesh.
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QTemporaryDir dir;
+    QString obj;
+    for (int y = 0; y <= 6; ++y)
+      for (int x = 0; x <= 6; ++x) obj += QString("v %1 %2 0\n").arg(10 * x).arg(10 * y);
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 6; ++x) {
+        const int a = y * 7 + x + 1, b = a + 1, c = a + 8, d = a + 7;
+        obj += QString("f %1 %2 %3\nf %1 %3 %4\n").arg(a).arg(b).arg(c).arg(d);
+      }
+    QFile file(dir.filePath("tris.obj"));
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write(obj.toUtf8());
+    file.close();
+    QVERIFY(w.open_file(dir.filePath("tris.obj")));
+    action(w, "traceField")->trigger();
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    const auto& state = w.document().state();
+    QVERIFY(state.labels && state.stitch);
+    QVERIFY(mesh::validate_labels(*w.document().input(), *state.labels).valid());
+    QCOMPARE(static_cast<int>(state.stitch->faces.size()), 110);  // 10 stitches a row, 11 rows (6 x 5 mm)
+    QVERIFY(w.emit_yarn());
+    check_shot(w, "traced-triangles", {}, 0.05);
+  }
+
   void open_label_tessellate_paint_relax_export() {
     MainWindow w;
     w.show();
