@@ -288,6 +288,17 @@ MeshData unpack(const std::string& in) {
 
 }  // namespace
 
+InputMesh with_used_points(const std::vector<Eigen::Vector3d>& points, std::vector<std::vector<int>> faces, std::string source) {
+  std::vector<int> remap(points.size(), -1);
+  std::vector<Eigen::Vector3d> used;
+  for (auto& f : faces)
+    for (int& v : f) {
+      if (remap[static_cast<std::size_t>(v)] < 0) remap[static_cast<std::size_t>(v)] = static_cast<int>(used.size()), used.push_back(points[static_cast<std::size_t>(v)]);
+      v = remap[static_cast<std::size_t>(v)];
+    }
+  return InputMesh(std::move(used), std::move(faces), std::move(source));
+}
+
 InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& limits) {
   const std::string name = path.string();
   std::error_code ec;

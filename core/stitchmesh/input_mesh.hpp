@@ -68,6 +68,10 @@ private:
   PolyMesh m_mesh;
 };
 
+/// An InputMesh of the points the faces use, in the order they are first used (points no face uses are
+/// dropped, the faces renumbered).
+InputMesh with_used_points(const std::vector<Eigen::Vector3d>& points, std::vector<std::vector<int>> faces, std::string source);
+
 /// Reads any format assimp reads (OBJ, PLY, glTF, FBX, ...) without triangulating; identical vertices are
 /// welded across all meshes of the file. assimp runs in a child process under `limits` (run_contained), so a
 /// file that crashes it or makes it take all memory or time is an error, not the end of skein. Throws

@@ -639,14 +639,7 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     throw Error(name, "", "no row fits: the surface reaches " + mm(field_max) + " from the start, less than two stitch heights (" +
                               mm(size.height) + ")");
   // Points no face uses (rows with nothing above or below them alone) are dropped.
-  std::vector<int> remap(points.size(), -1);
-  std::vector<Eigen::Vector3d> used;
-  for (auto& f : faces)
-    for (int& v : f) {
-      if (remap[v] < 0) remap[v] = static_cast<int>(used.size()), used.push_back(points[v]);
-      v = remap[v];
-    }
-  InputMesh traced(std::move(used), faces, name + " (traced rows)");
+  InputMesh traced = with_used_points(points, faces, name + " (traced rows)");
   Labeling labels(traced);
   labels.rows = rows;
   for (int f = 0; f < traced.num_faces(); ++f) {

@@ -38,15 +38,7 @@ mesh::InputMesh triangle_grid(int nx, int ny, bool wrap, At at, Keep keep, const
         faces.push_back({b, c, d});
       }
     }
-  // Drop points no face uses (the grid's left-out quads).
-  std::vector<int> remap(points.size(), -1);
-  std::vector<Eigen::Vector3d> used;
-  for (auto& f : faces)
-    for (int& v : f) {
-      if (remap[v] < 0) remap[v] = static_cast<int>(used.size()), used.push_back(points[v]);
-      v = remap[v];
-    }
-  return mesh::InputMesh(std::move(used), std::move(faces), name);
+  return mesh::with_used_points(points, std::move(faces), name);  // without the left-out quads' points
 }
 
 mesh::InputMesh tube(double radius, double height) {
