@@ -73,8 +73,9 @@ int run_command_line(int argc, char** argv) {
   stitch->add_option("MESH", stitch_in, "mesh (OBJ, PLY, glTF, FBX, ... or a .skein project)")->required();
   auto* auto_opt = stitch->add_flag("--auto-label", auto_label, "label every row automatically from the lowest border edge");
   auto* labels_opt = stitch->add_option("--labels", stitch_labels, "use the labels stored in this .skein file");
-  bool trace_field = false;
+  bool trace_field = false, stitch_repair = false;
   std::vector<double> start_point;
+  stitch->add_flag("--repair", stitch_repair, "mend the mesh first where CGAL can (duplicate points and faces, degenerate faces, orientation, bow ties) and say what changed");
   auto* field_opt = stitch->add_flag("--field", trace_field,
                                      "trace rows on any surface (triangles, poles, closed) as isolines of the knitting distance from the start (docs/stitch-meshes.md)");
   auto_opt->excludes(labels_opt);
@@ -100,6 +101,8 @@ int run_command_line(int argc, char** argv) {
   int label_start = -1;
   std::vector<int> flips;
   label->add_option("MESH", label_in, "mesh or .skein project")->required();
+  bool label_repair = false;
+  label->add_flag("--repair", label_repair, "mend the mesh first where CGAL can (duplicate points and faces, degenerate faces, orientation, bow ties) and say what changed");
   std::vector<int> first_rows, next_rows;
   auto* start_opt = label->add_option("--start-edge", label_start, "auto-label from this border edge (default: the lowest)");
   auto* first_opt = label->add_option("--first-row", first_rows, "label by hand: first rows from these border edges (instead of auto-label)");
@@ -453,7 +456,7 @@ int run_command_line(int argc, char** argv) {
       Stopwatch total, t;
       mesh::Project project;
       project.stitch_size = size;
-      project.input = load_input(stitch_in);
+      project.input = load_input(stitch_in, stitch_repair);
       const auto& m = *project.input;
       spdlog::info("loaded {}: {} vertices, {} faces ({:.3f} s)", stitch_in, m.num_vertices(), m.num_faces(), t.seconds());
       mesh::check_stitch_count(m, size, max_stitches);  // before any work that grows with the stitch count
@@ -509,7 +512,7 @@ int run_command_line(int argc, char** argv) {
       check_writable(label_out);
       const auto label_fabric_size = resolve_fabric(label_fabric, size_given(label), false).size;
       mesh::Project project;
-      project.input = load_input(label_in);
+      project.input = load_input(label_in, label_repair);
       const auto& m = *project.input;
       if (first_rows.empty()) {
         project.labels = mesh::auto_label(m, label_start >= 0 ? label_start : mesh::default_start_edge(m));

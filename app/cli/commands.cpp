@@ -20,14 +20,29 @@
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
+#include "stitchmesh/mesh_repair.hpp"
 
 namespace skein::cli {
 
 
 bool is_project(const fs::path& path) { return path.extension() == ".skein"; }
 
-mesh::InputMesh load_input(const fs::path& path) {
-  if (!is_project(path)) return mesh::load_mesh(path);
+mesh::InputMesh load_input(const fs::path& path, bool repair) {
+  if (repair) {  // issue 25: mend what CGAL can, and say what changed
+    if (is_project(path)) throw Error(path.string(), "", "--repair mends a mesh file, not a project");
+    mesh::RepairReport report;
+    auto soup = mesh::repair_mesh_soup(mesh::read_mesh_soup(path), report);
+    spdlog::info("repaired {}: {}", path.string(), report.summary());
+    return mesh::InputMesh(std::move(soup.points), std::move(soup.faces), path.string());
+  }
+  if (!is_project(path)) {
+    auto soup = mesh::read_mesh_soup(path);
+    try {
+      return mesh::InputMesh(std::move(soup.points), std::move(soup.faces), path.string());
+    } catch (const Error& e) {  // a rule of the mesh broken: say what can mend it
+      throw Error(e.file(), e.place(), e.rule() + "; --repair mends duplicate points and faces, degenerate faces, orientation and bow ties");
+    }
+  }
   auto project = mesh::read_project(path);
   if (!project.input) throw Error(path.string(), "", "the project holds no input mesh");
   return std::move(*project.input);

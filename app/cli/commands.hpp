@@ -65,8 +65,9 @@ private:
 
 bool is_project(const fs::path& path);
 bool is_bcc(const fs::path& path);
-/// A mesh file or the input mesh of a project.
-mesh::InputMesh load_input(const fs::path& path);
+/// A mesh file or the input mesh of a project; with `repair`, a mesh file mended by mesh::repair_mesh_soup (what
+/// changed is logged).
+mesh::InputMesh load_input(const fs::path& path, bool repair = false);
 /// Labels (and tessellation values, when stored) in `path` for `mesh`: the same faces, corner for corner
 /// (vertex ids may differ).
 std::pair<mesh::Labeling, std::optional<mesh::TessellationValues>> labels_for(const mesh::InputMesh& mesh, const fs::path& path);

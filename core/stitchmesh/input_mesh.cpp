@@ -191,13 +191,9 @@ double InputMesh::bounding_diagonal() const {
 
 namespace {
 
-/// What a mesh file holds: positions (welded across the file's meshes) and polygons.
-struct MeshData {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::vector<int>> faces;
-};
 
-MeshData read_with_assimp(const std::filesystem::path& path) {
+
+MeshSoup read_with_assimp(const std::filesystem::path& path) {
   const std::string name = path.string();
   Assimp::Importer importer;
   // Drop everything but positions so that welding joins corners that differ only in normals or UVs.
@@ -209,7 +205,7 @@ MeshData read_with_assimp(const std::filesystem::path& path) {
                                                               aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
   if (!scene) throw Error(name, "", std::string("cannot read it as a mesh: ") + importer.GetErrorString());
 
-  MeshData data;
+  MeshSoup data;
   auto& [points, faces] = data;
   // Weld identical positions across all meshes of the scene (assimp joins only within one mesh).
   std::map<std::array<double, 3>, int> index_of;
@@ -244,7 +240,7 @@ MeshData read_with_assimp(const std::filesystem::path& path) {
   return data;
 }
 
-// MeshData through the contained reader's pipe: counts, then doubles and ints as this machine stores them.
+// MeshSoup through the contained reader's pipe: counts, then doubles and ints as this machine stores them.
 template <class T> void put(std::string& out, T v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
 template <class T> T take(const std::string& in, size_t& at) {
   if (at + sizeof(T) > in.size()) throw Error("the mesh reader's answer is cut short");
@@ -254,7 +250,7 @@ template <class T> T take(const std::string& in, size_t& at) {
   return v;
 }
 
-std::string pack(const MeshData& data) {
+std::string pack(const MeshSoup& data) {
   std::string out;
   put<std::uint64_t>(out, data.points.size());
   for (const auto& p : data.points) put(out, p.x()), put(out, p.y()), put(out, p.z());
@@ -266,8 +262,8 @@ std::string pack(const MeshData& data) {
   return out;
 }
 
-MeshData unpack(const std::string& in) {
-  MeshData data;
+MeshSoup unpack(const std::string& in) {
+  MeshSoup data;
   size_t at = 0;
   const auto points = take<std::uint64_t>(in, at);
   if (points > in.size() / 24) throw Error("the mesh reader's answer is cut short");
@@ -299,7 +295,7 @@ InputMesh with_used_points(const std::vector<Eigen::Vector3d>& points, std::vect
   return InputMesh(std::move(used), std::move(faces), std::move(source));
 }
 
-InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& limits) {
+MeshSoup read_mesh_soup(const std::filesystem::path& path, const ContainedLimits& limits) {
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(name, "", "no such file");
@@ -328,7 +324,12 @@ InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& li
     }
   for (auto& f : faces)
     for (int& v : f) v = used[v];
-  return InputMesh(std::move(kept), std::move(faces), name);
+  return {std::move(kept), std::move(faces)};
+}
+
+InputMesh load_mesh(const std::filesystem::path& path, const ContainedLimits& limits) {
+  auto soup = read_mesh_soup(path, limits);
+  return InputMesh(std::move(soup.points), std::move(soup.faces), path.string());
 }
 
 void write_obj(const InputMesh& mesh, const std::filesystem::path& path) {

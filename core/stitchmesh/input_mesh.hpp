@@ -72,6 +72,16 @@ private:
 /// dropped, the faces renumbered).
 InputMesh with_used_points(const std::vector<Eigen::Vector3d>& points, std::vector<std::vector<int>> faces, std::string source);
 
+/// What a mesh file holds, before any rule is checked: positions (welded across the file's meshes) and polygons.
+struct MeshSoup {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::vector<int>> faces;
+};
+
+/// Reads a mesh file as load_mesh does (assimp in a child process under `limits`, points no face uses dropped)
+/// without building the mesh, for repair (mesh_repair.hpp). Throws skein::Error as load_mesh does for the file.
+MeshSoup read_mesh_soup(const std::filesystem::path& path, const ContainedLimits& limits = ContainedLimits::from_environment());
+
 /// Reads any format assimp reads (OBJ, PLY, glTF, FBX, ...) without triangulating; identical vertices are
 /// welded across all meshes of the file. assimp runs in a child process under `limits` (run_contained), so a
 /// file that crashes it or makes it take all memory or time is an error, not the end of skein. Throws

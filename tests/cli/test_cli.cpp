@@ -144,6 +144,49 @@ TEST(Cli, LabelRowByRowByHand) {
   EXPECT_NE(bad.output.find("not a border edge"), std::string::npos) << bad.output;
 }
 
+TEST(Cli, RepairMendsWhatCgalCanAndSaysWhatChanged) {
+  // Issue 25, part 2: a strip of three quads with the third turned round, the first twice, a degenerate face
+  // and a quad touching the strip at one corner only (a bow tie).
+  ScratchDir dir;
+  const auto mesh = dir.write("broken.obj", R"(v 0 0 0
+v 10 0 0
+v 20 0 0
+v 30 0 0
+v 0 10 0
+v 10 10 0
+v 20 10 0
+v 30 10 0
+v 40 10 0
+v 40 20 0
+v 30 20 0
+f 1 2 6 5
+f 7 6 2 3
+f 7 8 4 3
+f 1 2 6 5
+f 1 2 2
+f 8 9 10 11
+)");
+  const auto out = dir / "b.skein";
+  const auto refused = run_skein("stitch " + mesh.string() + " --auto-label -o " + out.string());
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.output.find("broken.obj: face 4: uses vertex 1 twice (vertices 0 1 1); --repair mends duplicate points and faces"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto mended = run_skein("stitch " + mesh.string() + " --auto-label --repair --stitch-size 3 --stitch-height 2.5 -o " + out.string());
+  ASSERT_EQ(mended.status, 0) << mended.output;
+  EXPECT_NE(mended.output.find("repaired " + mesh.string() +
+                               ": removed 1 degenerate face, removed 1 duplicate face, turned 1 face round to agree with its neighbours, "
+                               "split 1 point where the surface met itself"),
+            std::string::npos)
+      << mended.output;
+  EXPECT_NE(mended.output.find("tessellated: 48 stitch faces"), std::string::npos) << mended.output;  // 4 quads of 10 mm, 3 x 2.5 mm stitches
+  // A project is not a mesh file to mend.
+  const auto project = run_skein("label " + out.string() + " --repair -o " + (dir / "l.skein").string());
+  EXPECT_EQ(project.status, 2);
+  EXPECT_NE(project.output.find("b.skein: --repair mends a mesh file, not a project"), std::string::npos) << project.output;
+}
+
 TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
   ScratchDir dir;
   std::string obj;
