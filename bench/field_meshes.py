@@ -71,6 +71,52 @@ def pole_dome():
     return p, f
 
 
+def sock():
+    """A sock: a leg tube (open cuff at the top) bending through a heel into a foot that ends in a round toe.
+    Circles of radius 35 swept along leg, heel arc and foot (parallel-transported frames), triangulated."""
+    centres = []
+    for k in range(16):  # the leg, down from the cuff at y = 250 to y = 100
+        centres.append((0.0, 250.0 - 10 * k, 0.0))
+    for k in range(1, 13):  # the heel: a quarter circle of radius 60 turning from -y to +x
+        a = math.pi / 2 * k / 12
+        centres.append((60 - 60 * math.cos(a), 100 - 60 * math.sin(a), 0.0))
+    for k in range(1, 13):  # the foot, along +x
+        centres.append((60 + 10 * k, 40.0, 0.0))
+    radius, around = 35.0, 24
+    points, rings = [], []
+    for i, c in enumerate(centres):
+        t = [centres[min(i + 1, len(centres) - 1)][k] - centres[max(i - 1, 0)][k] for k in range(3)]
+        n = math.sqrt(sum(x * x for x in t))
+        t = [x / n for x in t]
+        u = (0.0, 0.0, 1.0)  # every tangent lies in the xy plane: z is a normal all along
+        v = (t[1] * u[2] - t[2] * u[1], t[2] * u[0] - t[0] * u[2], t[0] * u[1] - t[1] * u[0])
+        ring = []
+        for j in range(around):
+            a = 2 * math.pi * j / around
+            ring.append(len(points))
+            points.append(tuple(c[k] + radius * (math.cos(a) * u[k] + math.sin(a) * v[k]) for k in range(3)))
+        rings.append(ring)
+    end = centres[-1]
+    for k in range(1, 6):  # the toe: rings closing over a hemisphere
+        a = math.pi / 2 * k / 6
+        ring = []
+        for j in range(around):
+            b = 2 * math.pi * j / around
+            ring.append(len(points))
+            points.append((end[0] + radius * math.sin(a), end[1] - radius * math.cos(a) * math.sin(b), end[2] + radius * math.cos(a) * math.cos(b)))
+        rings.append(ring)
+    tip = len(points)
+    points.append((end[0] + radius, end[1], end[2]))
+    faces = []
+    for r in range(len(rings) - 1):
+        for j in range(around):
+            a, b, c, d = rings[r][j], rings[r][(j + 1) % around], rings[r + 1][(j + 1) % around], rings[r + 1][j]
+            faces += [(a, b, c), (a, c, d)]
+    for j in range(around):
+        faces.append((rings[-1][j], rings[-1][(j + 1) % around], tip))
+    return points, faces
+
+
 def fanned(path):
     """An OBJ's polygons fanned into triangles."""
     points, faces = [], []
@@ -100,6 +146,7 @@ def main():
     write(folder, "torus", *grid(32, 16, True, lambda u, v: ((60 + 20 * math.cos(2 * math.pi * v)) * math.cos(2 * math.pi * u), 20 * math.sin(2 * math.pi * v),
                                                               (60 + 20 * math.cos(2 * math.pi * v)) * math.sin(2 * math.pi * u))))
     write(folder, "pole-valence-8", *pole_dome())
+    write(folder, "sock", *sock())
     write(folder, "u-sheet", *grid(12, 12, False, lambda u, v: (120 * u, 120 * v, 0.0), lambda i, j: not (j >= 6 and 4 <= i < 8)))
     models = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models")
     for name in ("swatch", "tube", "beanie", "mitten", "tea_cozy", "sweater"):

@@ -591,6 +591,9 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       if (one_to_one(i)) {
         const PlacedRow& a = below[static_cast<std::size_t>(downs[i][0])];
         const int n = a.edges();
+        // The row keeps the count below unless its length is more than 3/4 of a stitch off it: no increase and
+        // decrease in turn where a tube's length hovers about a half stitch (a knitter keeps the count).
+        if (std::abs(l / size.width - n) < 0.75) edges = n;
         edges = std::clamp(edges, (n + 1) / 2, 2 * n);
         if (lines[i].closed) edges = std::max(edges, 3);
         if (lines[i].closed) lines[i] = begun_near(lines[i], a.line.points.front());
