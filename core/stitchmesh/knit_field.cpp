@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
@@ -462,21 +464,32 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       }
       changed = false;
       for (std::size_t r = 0; r < runs.size() && runs.size() > 1; ++r)
-        if (runs[r].edges < 3) {
-          const int into = runs[(r + runs.size() - 1) % runs.size()].partner;
+        if (runs[r].edges < 3) {  // into the run before it (the one after it, at an open row's start)
+          const bool first_of_open = r == 0 && !whole.line.closed;
+          const int into = runs[first_of_open ? 1 : (r + runs.size() - 1) % runs.size()].partner;
           for (int e = 0; e < runs[r].edges; ++e) label[static_cast<std::size_t>((runs[r].from + e) % n)] = into;
-          changed = true;
+          changed = true;  // a neighbour's partner always differs from the run's: the runs become fewer
           break;
         }
     }
+    // Runs of two partners side by side would share their end point with no face between them (two fans
+    // meeting at a point): the first gives up its last edge, closed off (or cast on) there.
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      const bool last = r + 1 == runs.size();
+      if (last && !whole.line.closed) break;
+      const Run& next = runs[last ? 0 : r + 1];
+      if (&next != &runs[r] && runs[r].partner >= 0 && next.partner >= 0 && runs[r].edges > 1) --runs[r].edges;
+    }
     std::map<int, std::vector<char>> covered;  // partner -> its edges joined so far (a partner may meet several runs)
+    std::map<int, std::set<int>> ends;         // partner -> its points that end a stretch joined so far
     for (const Run& run : runs) {
       if (run.partner < 0) continue;
       // The partner's stretch across from the run: each point of the run's nearest on the partner, followed
       // round the partner by its shortest steps (so a run the partner meets only at its ends, as at a crotch,
       // still spans the partner's side that faces it).
       const PlacedRow& other = others[static_cast<std::size_t>(run.partner)];
-      const int m = other.edges(), from = nearest_in(other, point(run.from));
+      const int m = other.edges();
+      int from = nearest_in(other, point(run.from));
       int edges = 0;
       for (int v = 1, previous = from; v <= run.edges; ++v) {
         const int at = nearest_in(other, point(run.from + v));
@@ -485,8 +498,19 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
         edges += step;
         previous = at;
       }
-      edges = std::min(edges, m);
+      // A run over part of its row takes less than all of a ring: a whole ring would start and end its
+      // stretch at one point, two fans meeting there.
+      edges = std::min(edges, other.line.closed && !(whole.line.closed && run.edges == n) ? m - 1 : m);
+      // Nor may two stretches of one partner meet at a point: a stretch stops an edge short of another's end.
+      int first = from;
+      auto& taken_ends = ends[run.partner];
+      const auto wrap = [&](int i) { return other.line.closed ? ((i % m) + m) % m : i; };
+      if (taken_ends.count(wrap(first))) ++first, --edges;
+      if (edges > 0 && taken_ends.count(wrap(first + edges))) --edges;
       if (edges < 1) continue;
+      from = wrap(first);
+      taken_ends.insert(from);
+      taken_ends.insert(wrap(from + edges));
       auto& used = covered.try_emplace(run.partner, static_cast<std::size_t>(m), 0).first->second;
       for (int e = 0; e < edges; ++e) {
         char& edge = used[static_cast<std::size_t>(other.line.closed ? (from + e) % m : from + e)];
@@ -506,7 +530,9 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     Isolines found = isolines(field, level);
     // The next row one stitch height on: the field rises by the height times its gradient length, averaged
     // between here and the predicted next row (Heun's rule; the length changes fastest near the start).
-    next_level = level + size.height * 0.5 * (found.slope + isolines(field, level + size.height * found.slope).slope);
+    // Clamped: a distance's gradient is 1, and a stray one must neither stall the rows nor skip them.
+    const auto clamped = [](double slope) { return std::clamp(slope, 0.5, 2.0); };
+    next_level = level + size.height * 0.5 * (clamped(found.slope) + clamped(isolines(field, level + size.height * clamped(found.slope)).slope));
     std::vector<Polyline> lines;
     for (auto& line : found.lines) {
       const double l = line.length();
@@ -642,7 +668,23 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     throw Error(name, "", "no row fits: the surface reaches " + mm(field_max) + " from the start, less than two stitch heights (" +
                               mm(size.height) + ")");
   // Points no face uses (rows with nothing above or below them alone) are dropped.
-  InputMesh traced = with_used_points(points, faces, name + " (traced rows)");
+  std::optional<InputMesh> built;
+  try {
+    built.emplace(with_used_points(points, faces, name + " (traced rows)"));
+  } catch (const Error& e) {  // a branch joined in a way the mesh's rules refuse: say so in the user's terms
+    std::string place = e.place();
+    int vertex = -1;
+    if (std::sscanf(place.c_str(), "vertex %d", &vertex) == 1) {  // the traced vertex's position, numbered by first use
+      std::vector<int> seen(points.size(), -1);
+      int next = 0;
+      for (const auto& f : faces)
+        for (int v : f)
+          if (seen[static_cast<std::size_t>(v)] < 0 && (seen[static_cast<std::size_t>(v)] = next++) == vertex) place = where(points[static_cast<std::size_t>(v)]);
+    }
+    const std::string rule = e.rule().find("non-manifold") != std::string::npos ? "two fans of stitches meet only at a point" : e.rule();
+    throw Error(name, place, "the traced rows break a rule of meshes at a branch (" + rule + "); cut the mesh at the branch, or label it by hand");
+  }
+  InputMesh traced = std::move(*built);
   Labeling labels(traced);
   labels.rows = rows;
   for (int f = 0; f < traced.num_faces(); ++f) {
