@@ -77,7 +77,7 @@ int run_command_line(int argc, char** argv) {
   std::vector<double> start_point;
   stitch->add_flag("--repair", stitch_repair, "mend the mesh first where CGAL can (duplicate points and faces, degenerate faces, orientation, bow ties) and say what changed");
   auto* field_opt = stitch->add_flag("--field", trace_field,
-                                     "trace rows on any surface (triangles, poles, closed) as isolines of the knitting distance from the start (docs/stitch-meshes.md)");
+                                     "trace rows on any surface (triangles, poles, closed) as isolines of the knitting distance from the start (docs/stitch-a-garment.md)");
   auto_opt->excludes(labels_opt);
   field_opt->excludes(auto_opt)->excludes(labels_opt);
   auto* start_edge_opt = stitch->add_option("--start-edge", start_edge, "with --auto-label or --field: the border edge to start from (default: the lowest)");
@@ -465,6 +465,9 @@ int run_command_line(int argc, char** argv) {
       if (trace_field) {
         mesh::KnitStart knit_start;
         if (start_point.empty()) {
+          bool has_border = false;
+          for (int e = 0; e < m.num_edges() && !has_border; ++e) has_border = m.is_border(e);
+          if (!has_border) throw Error(stitch_in, "", "a closed surface has no border to start from: give --start-point X,Y,Z");
           knit_start.border_edge = start_edge >= 0 ? start_edge : mesh::default_start_edge(m);
         } else {
           knit_start.point = Eigen::Vector3d(start_point[0], start_point[1], start_point[2]);

@@ -67,9 +67,9 @@ struct FieldSurface {
 /// pass kFieldMaxTriangles on this surface's area.
 constexpr double kFieldMaxTriangles = 4e6;
 
-/// Builds the field surface and the geodesic distance from `sources` (CGAL's heat method on the intrinsic
-/// Delaunay triangulation, which stays accurate on the long thin triangles artists' meshes have). `sources`
-/// picks the refined surface's source vertices from their positions and whether they lie on the border.
+/// Builds the field surface and the geodesic distance from `sources` (CGAL's heat method, directly on the
+/// isotropically remeshed triangles, whose good shapes the cotangent weights want). `sources` picks the
+/// refined surface's source vertices from their positions and whether they lie on the border.
 FieldSurface knitting_distance(const InputMesh& surface, double max_edge,
                                const std::function<std::vector<int>(const std::vector<Eigen::Vector3d>&, const std::vector<char>&)>& sources) {
   Surface tm;

@@ -47,11 +47,11 @@ struct TracedRows {
 /// Border edges of `start`'s run, in order along the border (the surface to their left, seen from outside).
 std::vector<int> field_start_run(const InputMesh& surface, int border_edge);
 
-/// Traces a stitch mesh on `surface` from `start` at `size` (the mesh's units are millimetres). Throws
-/// skein::Error naming the mesh for: a start that is not a border edge, a piece of the surface that the start
-/// does not reach, a field the heat method could not compute, and rows that split or merge (a surface that
-/// branches, such as a shirt's body into its sleeves: cut it into pieces or label it by hand), naming the
-/// height and the place.
+/// Traces a stitch mesh on `surface` from `start` at `size` (the mesh's units are millimetres). Rows that split
+/// or merge (a thumb, sleeves, a hole) are joined run by run (docs/stitch-a-garment.md). Throws skein::Error
+/// naming the mesh and the place for: a start that is not a border edge, a piece of the surface that the start
+/// does not reach, a field the heat method could not compute, rows that split and merge at once or meet
+/// unevenly, joins that would break a rule of meshes, and a surface too small for a row.
 TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, const StitchSize& size);
 
 }  // namespace skein::mesh

@@ -225,6 +225,11 @@ TEST(Cli, TrianglesAreNamedAsTheCauseAndTheListIsShort) {
   EXPECT_EQ(inner.status, 2);
   EXPECT_NE(inner.output.find("tris.obj: edge 500: is not a border edge; knitting starts on a border or at a point (--start-point)"), std::string::npos)
       << inner.output;
+  const auto tetrahedron = dir.write("closed.obj", "v 0 0 0\nv 60 0 0\nv 0 60 0\nv 0 0 60\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
+  const auto closed = run_skein("stitch " + tetrahedron.string() + " --field -o " + out.string());
+  EXPECT_EQ(closed.status, 2);
+  EXPECT_NE(closed.output.find("closed.obj: a closed surface has no border to start from: give --start-point X,Y,Z"), std::string::npos)
+      << closed.output;
   const auto no_field = run_skein("stitch " + mesh.string() + " --auto-label --start-point 1,2,3 -o " + out.string());
   EXPECT_NE(no_field.status, 0);
   EXPECT_NE(no_field.output.find("--start-point requires --field"), std::string::npos) << no_field.output;
