@@ -464,14 +464,8 @@ int run_command_line(int argc, char** argv) {
       std::optional<mesh::TessellationValues> stored_values;
       if (trace_field) {
         mesh::KnitStart knit_start;
-        if (start_point.empty()) {
-          bool has_border = false;
-          for (int e = 0; e < m.num_edges() && !has_border; ++e) has_border = m.is_border(e);
-          if (!has_border) throw Error(stitch_in, "", "a closed surface has no border to start from: give --start-point X,Y,Z");
-          knit_start.border_edge = start_edge >= 0 ? start_edge : mesh::default_start_edge(m);
-        } else {
-          knit_start.point = Eigen::Vector3d(start_point[0], start_point[1], start_point[2]);
-        }
+        knit_start.border_edge = start_edge;  // -1: the lowest
+        if (!start_point.empty()) knit_start.point = Eigen::Vector3d(start_point[0], start_point[1], start_point[2]);
         auto traced = mesh::trace_stitch_mesh(m, knit_start, size);
         spdlog::info("traced {} rows on {} isolines of the knitting distance (farthest {:.1f} mm): {} faces, {} cast-on and {} closed-off rows ({:.3f} s)",
                      traced.labels.rows, traced.levels, traced.field_max, traced.mesh.num_faces(), traced.row_starts, traced.row_ends, t.seconds());

@@ -28,21 +28,21 @@ namespace skein::cli {
 bool is_project(const fs::path& path) { return path.extension() == ".skein"; }
 
 mesh::InputMesh load_input(const fs::path& path, bool repair) {
-  if (repair) {  // issue 25: mend what CGAL can, and say what changed
-    if (is_project(path)) throw Error(path.string(), "", "--repair mends a mesh file, not a project");
-    mesh::RepairReport report;
-    auto soup = mesh::repair_mesh_soup(mesh::read_mesh_soup(path), report);
-    spdlog::info("repaired {}: {}", path.string(), report.summary());
-    return mesh::InputMesh(std::move(soup.points), std::move(soup.faces), path.string());
-  }
   if (!is_project(path)) {
     auto soup = mesh::read_mesh_soup(path);
+    if (repair) {  // issue 25: mend what CGAL can, and say what changed
+      mesh::RepairReport report;
+      soup = mesh::repair_mesh_soup(std::move(soup), report);
+      spdlog::info("repaired {}: {}", path.string(), report.summary());
+    }
     try {
       return mesh::InputMesh(std::move(soup.points), std::move(soup.faces), path.string());
-    } catch (const Error& e) {  // a rule of the mesh broken: say what can mend it
+    } catch (const Error& e) {  // a rule of the mesh broken: say what can mend it, unless it has been tried
+      if (repair) throw;
       throw Error(e.file(), e.place(), e.rule() + "; --repair mends duplicate points and faces, degenerate faces, orientation and bow ties");
     }
   }
+  if (repair) throw Error(path.string(), "", "--repair mends a mesh file, not a project");
   auto project = mesh::read_project(path);
   if (!project.input) throw Error(path.string(), "", "the project holds no input mesh");
   return std::move(*project.input);

@@ -247,7 +247,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       project.input = load_input(job.mesh);
       if (job.field) {  // the traced rows become the project's input mesh, one stitch a face
         mesh::check_stitch_count(*project.input, job.stitch_size, job.max_stitches);  // before tracing, which grows with it
-        auto traced = mesh::trace_stitch_mesh(*project.input, {mesh::default_start_edge(*project.input), {}}, job.stitch_size);
+        auto traced = mesh::trace_stitch_mesh(*project.input, {}, job.stitch_size);  // from the lowest border
         project.input = std::move(traced.mesh);
         project.labels = std::move(traced.labels);
         project.values = std::move(traced.values);

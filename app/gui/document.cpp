@@ -123,8 +123,7 @@ void Document::auto_label(int border_edge) {
 
 void Document::trace_field(int border_edge) {
   require_input();
-  const int start = border_edge >= 0 ? border_edge : mesh::default_start_edge(*m_input);
-  auto traced = mesh::trace_stitch_mesh(*m_input, {start, {}}, m_state.stitch_size);
+  auto traced = mesh::trace_stitch_mesh(*m_input, {border_edge, {}}, m_state.stitch_size);
   EditState state;
   state.stitch_size = m_state.stitch_size;
   state.stitch = mesh::tessellate(traced.mesh, traced.labels, traced.values);

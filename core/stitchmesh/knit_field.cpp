@@ -336,7 +336,14 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       if ((surface.point(v) - *start.point).squaredNorm() < (surface.point(best) - *start.point).squaredNorm()) best = v;
     start_vertices.push_back(best);
   } else {
-    for (int e : field_start_run(surface, start.border_edge)) {
+    int border_edge = start.border_edge;
+    if (border_edge < 0) {  // the lowest border edge; a closed surface has none
+      bool has_border = false;
+      for (int e = 0; e < surface.num_edges() && !has_border; ++e) has_border = surface.is_border(e);
+      if (!has_border) throw Error(name, "", "a closed surface has no border to start from: give --start-point X,Y,Z");
+      border_edge = default_start_edge(surface);
+    }
+    for (int e : field_start_run(surface, border_edge)) {
       const auto [a, b] = surface.edge_vertices(e);
       start_vertices.push_back(a);
       run_segments.push_back({surface.point(a), surface.point(b)});
@@ -542,7 +549,6 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     // Each line's row below: the one most of its points lie next to (within `reach`), if a quarter of them
     // do; at a branch a line runs next to the row below only on its outer side.
     std::vector<int> match(lines.size(), -1);
-    const auto& refuse = refuse_at;
     for (std::size_t i = 0; i < lines.size(); ++i) {
       double best = kFieldSliver;
       for (std::size_t j = 0; j < below.size(); ++j) {
@@ -595,7 +601,7 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
       if (downs[i].size() < 2) continue;
       for (int j : downs[i])
         if (ups[static_cast<std::size_t>(j)].size() > 1)
-          refuse(lines[i].points.front(), "the rows split and merge at once here; cut the mesh at the branch, or label it by hand");
+          refuse_at(lines[i].points.front(), "the rows split and merge at once here; cut the mesh at the branch, or label it by hand");
     }
     // A line that goes on from one row alone, both rings or both rows with ends: joined stitch for stitch. A ring
     // that runs into a border unevenly (a sleeve's slanted cuff) goes on as a row with ends: joined as at a

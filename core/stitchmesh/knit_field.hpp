@@ -21,7 +21,7 @@ namespace skein::mesh {
 /// border turns by more than kFieldCornerDegrees (a tube's end: its whole loop). A point: the vertex nearest
 /// to it, knitting in the round outwards from a small ring around it (a hat's crown, a sphere's pole).
 struct KnitStart {
-  int border_edge = -1;                  ///< used when `point` is not set
+  int border_edge = -1;                  ///< used when `point` is not set; -1: the lowest border edge
   std::optional<Eigen::Vector3d> point;  ///< the mesh's units
 };
 
