@@ -18,6 +18,7 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "job.hpp"
+#include "smock.hpp"
 #include "sweep.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
@@ -377,6 +378,26 @@ int run_command_line(int argc, char** argv) {
   pat->add_option("--rows", pat_rows, "with --onto: the rows A:B the pattern covers (default: all)")->needs(onto_opt);
   bool pat_no_audit = false;
   pat->add_flag("--no-audit", pat_no_audit, "with --relax: skip the per-step topology audit");
+
+  // skein smock (issue 30)
+  auto* smock = app.add_subcommand("smock", "gather a smocking pattern by its threads: Italian, Canadian or English smocking (Zhou 2024 §4.1; docs/smocking.md)");
+  SmockArgs sm;
+  smock->add_option("PATTERN", sm.input, "smocking pattern (.smock, docs/smocking.md)")->required();
+  smock->add_option("-o,--output", sm.output, "the embedding as JSON: grid points flat and gathered, each stitch's lifted midpoint (eqs. 6-8)");
+  smock->add_option("--obj", sm.obj, "the threads' positional constraints in 3-D as OBJ lines (z towards the front)");
+  smock->add_option("--png", sm.png, "picture: the pattern as drawn, the --snapshots, and the gathered fabric, at one scale");
+  smock->add_option("--chart-png", sm.chart_png, "picture: the threads' length over the iterations, the goal dashed");
+  smock->add_option("--report", sm.report, "report (JSON; - for stdout)");
+  smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(CLI::Range(1e-6, 1.0));
+  smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
+      ->check(CLI::PositiveNumber);
+  smock->add_option("--pull", sm.pull, "pulling direction X,Y, or \"along\": each stitch pulled along itself (the paper's CURVE pattern)")->capture_default_str();
+  smock->add_option("--snapshots", sm.options.snapshots, "also keep and draw the fabric when the threads first reach these fractions, e.g. 0.8,0.6,0.4")
+      ->delimiter(',')->check(CLI::Range(1e-6, 1.0));
+  bool smock_raw = false;
+  smock->add_flag("--no-settle", smock_raw, "leave the pleat points where Algorithm 1 stops (the paper's output; the fabric may be stretched there)")
+      ->each([&](const std::string&) { sm.options.settle = false; });
+  smock->add_option("--max-iterations", sm.options.max_iterations, "stop after this many iterations")->capture_default_str()->check(CLI::NonNegativeNumber);
 
   // skein audit
   auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
@@ -1069,6 +1090,7 @@ int run_command_line(int argc, char** argv) {
       spdlog::info("wrote {}", pat_out);
       return 0;
     }
+    if (*smock) return run_smock(sm);
     if (*audit) {
       const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);
       if (before.curve_start != after.curve_start || before.closed != after.closed)

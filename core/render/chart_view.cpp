@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "render/sketch.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::render {
@@ -13,35 +14,6 @@ namespace {
 const Eigen::Vector3f kInk(0.08f, 0.08f, 0.1f), kGrid(0.6f, 0.6f, 0.62f), kPaper(1, 1, 1), kNoSymbol(0.78f, 0.78f, 0.8f),
     kCable(0.1f, 0.35f, 0.6f), kNumber(0.3f, 0.3f, 0.55f);
 
-/// Drawing in cell units (x across, y up), each layer a little nearer the eye than the one below it.
-struct Sketch {
-  std::vector<Polygon> polygons;
-  void quad(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d, const Eigen::Vector3f& color,
-            double z) {
-    Polygon p;
-    for (const auto& v : {a, b, c, d}) p.points.emplace_back(v.x(), v.y(), z);
-    p.color = color;
-    polygons.push_back(std::move(p));
-  }
-  void box(double x0, double y0, double x1, double y1, const Eigen::Vector3f& color, double z) { quad({x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, color, z); }
-  void stroke(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double width, const Eigen::Vector3f& color, double z = 0.03) {
-    const Eigen::Vector2d d = (b - a).normalized(), n(-d.y() * width / 2, d.x() * width / 2);
-    quad(a - n, b - n, b + n, a + n, color, z);
-  }
-  void dot(const Eigen::Vector2d& c, double r, const Eigen::Vector3f& color) {
-    Polygon p;
-    for (int k = 0; k < 16; ++k) p.points.emplace_back(c.x() + r * std::cos(k * M_PI / 8), c.y() + r * std::sin(k * M_PI / 8), 0.03);
-    p.color = color;
-    polygons.push_back(std::move(p));
-  }
-  void ring(const Eigen::Vector2d& c, double r, double width) {
-    for (int k = 0; k < 20; ++k) {
-      const double a0 = k * M_PI / 10, a1 = (k + 1) * M_PI / 10;
-      stroke(c + r * Eigen::Vector2d(std::cos(a0), std::sin(a0)), c + r * Eigen::Vector2d(std::cos(a1), std::sin(a1)), width, kInk);
-    }
-  }
-};
-
 /// The symbol of one stitch in the cell whose lower left corner is (x, y): `glyph` is k p y / \ ^ v x.
 void draw_glyph(Sketch& s, char glyph, double x, double y) {
   const double w = 0.09;
@@ -49,7 +21,7 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
   switch (glyph) {
     case 'k': break;
     case 'p': s.dot(c, 0.14, kInk); break;
-    case 'y': s.ring(c, 0.28, w); break;
+    case 'y': s.ring(c, 0.28, w, kInk); break;
     case '/': s.stroke({x + 0.2, y + 0.15}, {x + 0.8, y + 0.85}, w, kInk); break;
     case '\\': s.stroke({x + 0.2, y + 0.85}, {x + 0.8, y + 0.15}, w, kInk); break;
     case '^':
@@ -66,28 +38,6 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
       break;
     default: s.box(x + 0.06, y + 0.06, x + 0.94, y + 0.94, kNoSymbol, 0.02); break;
   }
-}
-
-/// Row number `n` as seven-segment digits `height` cells tall, its lower left corner at (x, y); returns the
-/// width it took.
-double draw_number(Sketch& s, int n, double x, double y, double height) {
-  // Segments a (top), b (upper right), c (lower right), d (bottom), e (lower left), f (upper left), g (middle).
-  static const char* const kDigits[] = {"abcdef", "bc", "abged", "abgcd", "fgbc", "afgcd", "afgedc", "abc", "abcdefg", "abcdfg"};
-  const std::string digits = std::to_string(n);
-  const double w = 0.55 * height, line = 0.16 * height, advance = w + 0.35 * height;
-  for (size_t k = 0; k < digits.size(); ++k) {
-    const double x0 = x + k * advance, x1 = x0 + w, y0 = y, y1 = y + height / 2, y2 = y + height;
-    const double xs[2] = {x0, x1}, ys[3] = {y0, y1, y2};
-    // Each segment's two ends, a to g: (column 0 or 1, height 0, 1 or 2 halves) and the same for the other end.
-    static const int kEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, {0, 0, 1, 0}, {0, 1, 0, 0}, {0, 2, 0, 1}, {0, 1, 1, 1}};
-    for (const char* seg = kDigits[digits[k] - '0']; *seg; ++seg) {
-      const int* e = kEnds[*seg - 'a'];
-      const Eigen::Vector2d a(xs[e[0]], ys[e[1]]), b(xs[e[2]], ys[e[3]]);
-      const Eigen::Vector2d along = (b - a).normalized() * (line / 2);
-      s.stroke(a - along, b + along, line, kNumber);
-    }
-  }
-  return digits.size() * advance;
 }
 
 /// The glyphs of a face's cells, left to right (its stitch model's order), or "" when the type has no symbol.
@@ -152,16 +102,12 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
   }
   // Row numbers at the right of each row, as charts print them (row 1 at the bottom).
   double numbers = 0;
-  for (int r = 0; r < rows; ++r) numbers = std::max(numbers, draw_number(s, r + 1, width + 0.3, r + 0.25, 0.5));
+  for (int r = 0; r < rows; ++r) numbers = std::max(numbers, s.number(r + 1, width + 0.3, r + 0.25, 0.5, kNumber));
   // The grid, and the paper under it with a margin.
   for (int r = 0; r <= rows; ++r) s.box(0, r - 0.015, width, r + 0.015, kGrid, 0.01);
   for (int c = 0; c <= width; ++c) s.box(c - 0.015, 0, c + 0.015, rows, kGrid, 0.01);
   s.box(-0.3, -0.3, width + 0.5 + numbers, rows + 0.3, kPaper, 0);
-  View view;
-  view.directions = {{0, 0, -1}};
-  view.outlines = false;
-  view.panel = std::clamp(static_cast<int>(cell * (std::max(width + numbers, static_cast<double>(rows)) + 1)), 64, 4096);
-  return draw(s.polygons, view);
+  return draw_flat(s, std::clamp(static_cast<int>(cell * (std::max(width + numbers, static_cast<double>(rows)) + 1)), 64, 4096));
 }
 
 }  // namespace skein::render

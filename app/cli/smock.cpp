@@ -1,0 +1,127 @@
+#include "smock.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "commands.hpp"
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "render/smocking_view.hpp"
+
+namespace skein::cli {
+namespace {
+
+json matrix_json(const Eigen::MatrixXd& m) {
+  json out = json::array();
+  for (int c = 0; c < m.cols(); ++c) {
+    json col = json::array();
+    for (int r = 0; r < m.rows(); ++r) col.push_back(m(r, c));
+    out.push_back(std::move(col));
+  }
+  return out;
+}
+
+/// The lifted threads (eqs. 6-8) as OBJ: each stitch from its first point down or up to its midpoint and on to
+/// its second point, two-point `l` records (every OBJ importer keeps those whole).
+void write_threads_obj(const smocking::Embedding& e, const smocking::Lift& lift, const std::string& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# skein smock: the threads' positional constraints (Zhou 2024 eqs. 6-8) [mm], z towards the front\n";
+    std::vector<int> vertex_of(e.rest.cols(), 0);
+    for (size_t k = 0; k < lift.points.size(); ++k) {
+      vertex_of[lift.points[k]] = static_cast<int>(k) + 1;
+      out << "v " << lift.point_positions(0, k) << " " << lift.point_positions(1, k) << " 0\n";
+    }
+    for (int k = 0; k < lift.midpoints.cols(); ++k) out << "v " << lift.midpoints(0, k) << " " << lift.midpoints(1, k) << " " << lift.midpoints(2, k) << "\n";
+    int thread = -1;
+    for (size_t k = 0; k < e.stitches.size(); ++k) {
+      const auto& s = e.stitches[k];
+      if (s.thread != thread) out << "o thread_" << (thread = s.thread) << "\n";
+      const int m = static_cast<int>(lift.points.size() + k) + 1;
+      out << "l " << vertex_of[s.a] << " " << m << "\nl " << m << " " << vertex_of[s.b] << "\n";
+    }
+  });
+}
+
+}  // namespace
+
+int run_smock(SmockArgs args) {
+  const auto pattern = smocking::read_smocking_pattern(args.input);
+  auto& o = args.options;
+  o.gamma = args.gamma.value_or(pattern.gamma);
+  if (args.pull == "along") {
+    o.pull_along_stitches = true;
+  } else {
+    double px = 0, py = 0;
+    char comma = 0, rest = 0;
+    std::istringstream in(args.pull);
+    if (!(in >> px >> comma >> py) || comma != ',' || (in >> rest))
+      throw Error("", "--pull", "expected X,Y (the pulling direction) or \"along\", found \"" + args.pull + "\"");
+    o.pull = {px, py};
+  }
+  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
+    if (!path.empty() && path != "-") check_writable(path);
+  spdlog::info("{}: {} smocking, {} x {} grid points {} mm apart, {} threads, {} stitches; gathering to gamma {}", args.input, style_name(pattern.style),
+               pattern.columns, pattern.rows, pattern.spacing, pattern.threads.size(), pattern.num_stitches(), o.gamma);
+  const Stopwatch clock;
+  const auto e = smocking::embed(pattern, o);
+  const double seconds = clock.seconds();
+  const auto lift = smocking::lift(e);
+  spdlog::info("{} after {} iterations: the threads at {:.4f} of their sewn length (goal {}), the fabric off eq. 1b by up to {:.1f} %", stop_name(e.stopped),
+               e.iterations, e.shrinkage_before_settling, o.gamma, 100 * e.stretch_before_settling);
+  if (o.settle)
+    spdlog::info("settled in {} sweeps: the threads at {:.4f}, the fabric stretched at most {:.2f} %, neighbours at least {:.2f} thicknesses apart ({:.3f} s in all)",
+                 e.settle_iterations, e.shrinkage(), 100 * e.largest_stretch, e.shortest_fabric, seconds);
+  json report = {{"input", args.input},
+                 {"pattern", pattern.name},
+                 {"source", pattern.note},
+                 {"style", style_name(pattern.style)},
+                 {"grid", {pattern.columns, pattern.rows}},
+                 {"spacing_mm", pattern.spacing},
+                 {"threads", pattern.threads.size()},
+                 {"stitches", e.stitches.size()},
+                 {"stitching_points", lift.points.size()},
+                 {"gamma", o.gamma},
+                 {"thickness_mm", e.thickness},
+                 {"pull", o.pull_along_stitches ? json("along") : json({o.pull.x(), o.pull.y()})},
+                 {"stopped_by", stop_name(e.stopped)},
+                 {"iterations", e.iterations},
+                 {"settle_iterations", e.settle_iterations},
+                 {"largest_fabric_violation_before_settling", e.stretch_before_settling},
+                 {"shrinkage_before_settling", e.shrinkage_before_settling},
+                 {"seconds", seconds},
+                 {"thread_length_sewn_mm", e.threads_rest},
+                 {"thread_length_mm", e.threads},
+                 {"shrinkage", e.shrinkage()},
+                 {"largest_fabric_stretch", e.largest_stretch},
+                 {"closest_fabric_over_thickness", e.shortest_fabric}};
+  if (!args.output.empty()) {
+    json out = report;
+    out["rest"] = matrix_json(e.rest);
+    out["positions"] = matrix_json(e.positions);
+    json stitches = json::array();
+    for (size_t k = 0; k < e.stitches.size(); ++k) {
+      const auto& s = e.stitches[k];
+      stitches.push_back({{"thread", s.thread}, {"from", s.a}, {"to", s.b}, {"side", s.front ? "front" : "back"},
+                          {"midpoint", {lift.midpoints(0, k), lift.midpoints(1, k), lift.midpoints(2, k)}}});
+    }
+    out["stitches_lifted"] = std::move(stitches);
+    out["stitching_point_indices"] = lift.points;
+    out["stitching_point_positions"] = matrix_json(lift.point_positions);
+    json snapshots = json::array();
+    for (const auto& [fraction, x] : e.snapshots) snapshots.push_back({{"fraction", fraction}, {"positions", matrix_json(x)}});
+    out["snapshots"] = std::move(snapshots);
+    write_json(out, args.output);
+  }
+  if (!args.obj.empty()) write_threads_obj(e, lift, args.obj);
+  if (!args.png.empty()) render::write_png(render::draw_smocking(pattern, e), args.png);
+  if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.history_every, o.gamma), args.chart_png);
+  if (!args.report.empty()) write_json(report, args.report);
+  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
+    if (!path.empty() && path != "-") spdlog::info("wrote {}", path);
+  return e.stopped == smocking::EmbedStop::Reached ? 0 : 1;
+}
+
+}  // namespace skein::cli
