@@ -1,6 +1,7 @@
 #include "smocking/smocking_pattern.hpp"
 
 #include <charconv>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -190,7 +191,10 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
         if (words.size() < w + 3) reader.fail(line, words[0], "expected \"walk [front|back] C,R STEP... xN\" (N stitches from C,R, the steps in turn)");
         Eigen::Vector2i at = reader.pair(line, words[w++], "the start point");
         std::vector<Eigen::Vector2i> steps;
-        for (; w + 1 < words.size(); ++w) steps.push_back(reader.pair(line, words[w], "a step"));
+        for (; w + 1 < words.size(); ++w) {
+          steps.push_back(reader.pair(line, words[w], "a step"));
+          if (std::abs(steps.back().x()) >= p.columns || std::abs(steps.back().y()) >= p.rows) reader.fail(line, words[w], "a step longer than the grid");
+        }
         const int n = reader.times(line, words.back());
         add_stitches(n, line);
         t.points.push_back(at);
@@ -204,6 +208,7 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
       arguments(2, "repeat DC,DR xN");
       if (p.threads.empty()) reader.fail(line, words[0], "nothing to repeat yet: write a path or walk first");
       const Eigen::Vector2i shift = reader.pair(line, words[1], "the shift");
+      if (std::abs(shift.x()) >= p.columns || std::abs(shift.y()) >= p.rows) reader.fail(line, words[1], "a shift longer than the grid");
       const int n = reader.times(line, words[2]);
       const std::vector<Thread> unit = p.threads;
       const int unit_stitches = p.num_stitches();

@@ -1005,3 +1005,37 @@ TEST(Cli, AYarnWeightRelaxesToItsGaugeAtItsCompressedContactAndMundensLoopLength
   EXPECT_FALSE(kept["fabric"].contains("take_up_to_munden"));
   EXPECT_GT(kept["free_period"]["against_asked"]["loop_length"].get<double>(), 1.05);
 }
+
+TEST(Cli, SmockGathersAPatternAndWritesItsEmbeddingPicturesAndReport) {
+  ScratchDir dir;
+  const std::string pattern = std::string(SKEIN_PATTERNS_DIR) + "/smocking/zigzag.smock";
+  const auto r = run_skein("smock " + pattern + " -o " + (dir / "z.json").string() + " --obj " + (dir / "z.obj").string() + " --png " +
+                           (dir / "z.png").string() + " --chart-png " + (dir / "c.png").string() + " --snapshots 0.6 --report " + (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "r.json"));
+  EXPECT_EQ(report["stopped_by"], "reached");
+  EXPECT_EQ(report["style"], "italian");
+  EXPECT_LE(report["shrinkage"].get<double>(), 0.3 * 1.05);
+  EXPECT_LE(report["largest_fabric_stretch"].get<double>(), 1.001e-3);
+  const auto out = nlohmann::json::parse(slurp(dir / "z.json"));
+  EXPECT_EQ(out["positions"].size(), 21u * 11u);
+  EXPECT_EQ(out["stitches_lifted"].size(), 100u);
+  EXPECT_EQ(out["snapshots"].size(), 1u);
+  EXPECT_TRUE(std::filesystem::file_size(dir / "z.png") > 1000 && std::filesystem::file_size(dir / "c.png") > 1000);
+  std::istringstream obj(slurp(dir / "z.obj"));
+  int lines = 0;
+  for (std::string line; std::getline(obj, line);) lines += line.rfind("l ", 0) == 0;
+  EXPECT_EQ(lines, 2 * 100);  // each stitch down or up to its midpoint and on
+}
+
+TEST(Cli, SmockRefusesBadPatternsAndSaysWhenTheThreadsStall) {
+  ScratchDir dir;
+  const auto bad = dir.write("bad.smock", "format smocking\ngrid 4 4\npath 0,0 5,0\n");
+  expect_refused("smock " + bad.string(), dir / "out.json", "bad.smock: line 3: point 2 (5,0) is off the grid of 4 x 4 points");
+  const auto vertical = dir.write("v.smock", "format smocking\ngrid 3 4\npath 1,0 1,1 1,2 1,3\n");
+  const auto stalled = run_skein("smock " + vertical.string() + " --report -");
+  EXPECT_EQ(stalled.status, 1) << stalled.output;
+  EXPECT_NE(stalled.output.find("\"stopped_by\": \"stalled\""), std::string::npos) << stalled.output;
+  EXPECT_EQ(run_skein("smock " + vertical.string() + " --pull 1,x").status, 2);
+  EXPECT_EQ(run_skein("smock " + vertical.string() + " --pull along").status, 0);
+}
