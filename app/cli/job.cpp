@@ -109,11 +109,42 @@ JobEdit job_edit(const Keys& k) {
 Job parse_job(const std::string& text, const fs::path& file) {
   const json j = parse_user_json(text, file);
   const Keys k(j, "", file);
-  k.only({"name", "mesh", "labels", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures"});
   Job job;
   job.file = file;
   job.name = k.text("name", file.stem().string());
-  if (!k.has("mesh")) k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project)");
+  if (k.has("smocking")) {
+    // A smocking job (docs/smocking.md): the pattern, how far its threads are pulled, the output folder.
+    k.only({"name", "smocking", "output", "pictures"});
+    const Keys sm(k.at("smocking"), "smocking", file);
+    sm.only({"pattern", "gamma", "pull", "thickness", "snapshots", "max_iterations"});
+    SmockingJob s;
+    if (!sm.has("pattern")) sm.fail(sm.name("pattern"), "is missing: the smocking pattern (.smock)");
+    s.pattern = sm.file("pattern");
+    if (sm.has("gamma")) s.args.gamma = sm.number("gamma", 0.3, 1e-6, 1);
+    if (sm.has("pull")) {
+      const json& pull = sm.at("pull");
+      if (pull == "along") s.args.pull = "along";
+      else if (pull.is_array() && pull.size() == 2 && pull[0].is_number() && pull[1].is_number())
+        s.args.pull = std::to_string(pull[0].get<double>()) + "," + std::to_string(pull[1].get<double>());
+      else sm.fail(sm.name("pull"), "expected [X, Y] (the pulling direction) or \"along\", found " + pull.dump());
+    }
+    s.args.options.thickness = sm.number("thickness", -1, 1e-6, 1e4);
+    s.args.options.max_iterations = static_cast<int>(sm.integer("max_iterations", s.args.options.max_iterations, 0, 100'000'000));
+    if (sm.has("snapshots")) {
+      const json& list = sm.at("snapshots");
+      if (!list.is_array()) sm.fail(sm.name("snapshots"), "expected a list of fractions in (0, 1], found " + list.dump());
+      for (const auto& f : list) {
+        if (!f.is_number() || !(f.get<double>() > 0 && f.get<double>() <= 1)) sm.fail(sm.name("snapshots"), "expected fractions in (0, 1], found " + f.dump());
+        s.args.options.snapshots.push_back(f.get<double>());
+      }
+    }
+    job.smocking = std::move(s);
+    job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();
+    job.pictures = k.flag("pictures", true);
+    return job;
+  }
+  k.only({"name", "mesh", "labels", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures", "smocking"});
+  if (!k.has("mesh")) k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project), or \"smocking\" for a smocking job");
   job.mesh = k.file("mesh");
   const std::string labels = k.text("labels", "auto");
   if (labels == "field") job.field = true;
@@ -240,6 +271,28 @@ int run_job(const Job& job, bool resume, bool progress) {
   const auto* interrupt = install_interrupt_handlers();
 
   JobRun run(job, resume);
+  if (job.smocking) {
+    if (resume) throw Error(job.file.string(), "key 'smocking'", "a smocking job has nothing to resume (it takes seconds)");
+    int status = 0;
+    try {
+      run.stage("gather the smocking pattern", [&] {
+        SmockArgs args = job.smocking->args;
+        args.input = job.smocking->pattern.string();
+        args.output = run.out("embedding.json");
+        args.obj = run.out("threads.obj");
+        if (job.pictures) args.png = run.out("smocking.png"), args.chart_png = run.out("shrinkage.png");
+        const json report = smock(args);
+        run.report()["smocking"] = report;
+        status = report["stopped_by"] == "reached" ? 0 : 1;
+      });
+    } catch (const Error& e) {
+      run.report()["error"] = e.what();
+      run.finish("failed");
+      throw;
+    }
+    run.finish(status == 0 ? "done" : "stalled");
+    return status;
+  }
   try {
     mesh::Project project;
     project.stitch_size = job.stitch_size;

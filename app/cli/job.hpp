@@ -9,6 +9,7 @@
 
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
+#include "smock.hpp"
 #include "stitchmesh/tessellation.hpp"
 
 namespace skein::cli {
@@ -22,10 +23,17 @@ struct JobEdit {
   int face = -1;                          ///< pattern: the stitch that takes its first stitch; -1: the lowest-left chosen one
 };
 
+/// A smocking job (issue 30): a pattern gathered by its threads instead of a garment knitted.
+struct SmockingJob {
+  std::filesystem::path pattern;
+  SmockArgs args;  ///< gamma, pull and options; the output paths are set in the job's folder
+};
+
 struct Job {
   std::filesystem::path file;    ///< the job file; relative paths in it are relative to its folder
   std::string name;
-  std::filesystem::path mesh;
+  std::filesystem::path mesh;    ///< the garment; empty for a smocking job
+  std::optional<SmockingJob> smocking;
   std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label (or the field)
   bool field = false;            ///< "labels": "field": rows traced from the knitting field (issue 25)
   mesh::StitchSize stitch_size;

@@ -47,7 +47,7 @@ void write_threads_obj(const smocking::Embedding& e, const smocking::Lift& lift,
 
 }  // namespace
 
-int run_smock(SmockArgs args) {
+json smock(SmockArgs args) {
   const auto pattern = smocking::read_smocking_pattern(args.input);
   auto& o = args.options;
   o.gamma = args.gamma.value_or(pattern.gamma);
@@ -121,7 +121,9 @@ int run_smock(SmockArgs args) {
   if (!args.report.empty()) write_json(report, args.report);
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
     if (!path.empty() && path != "-") spdlog::info("wrote {}", path);
-  return e.stopped == smocking::EmbedStop::Reached ? 0 : 1;
+  return report;
 }
+
+int run_smock(const SmockArgs& args) { return smock(args)["stopped_by"] == "reached" ? 0 : 1; }
 
 }  // namespace skein::cli

@@ -4,19 +4,24 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "smocking/smocking_embed.hpp"
 
 namespace skein::cli {
 
 struct SmockArgs {
-  std::string input, output, obj, png, chart_png, report;
+  std::string input, output, obj, png, chart_png, report;  ///< empty: not written
   std::optional<double> gamma;     ///< default: the pattern's own
   std::string pull = "1,0";        ///< X,Y or "along"
   smocking::EmbedOptions options;  ///< gamma and pull are set from the two above
 };
 
-/// Runs the embedding and writes what was asked; returns the exit status (0, or 1 when the threads stalled
-/// before γ or hit the iteration cap). Throws skein::Error on bad input.
-int run_smock(SmockArgs args);
+/// Gathers the pattern and writes what was asked; returns the report (also written to `report`).
+/// Throws skein::Error on bad input.
+nlohmann::json smock(SmockArgs args);
+
+/// `skein smock`: the exit status (0, or 1 when the threads stalled before γ or hit the iteration cap).
+int run_smock(const SmockArgs& args);
 
 }  // namespace skein::cli

@@ -1039,3 +1039,23 @@ TEST(Cli, SmockRefusesBadPatternsAndSaysWhenTheThreadsStall) {
   EXPECT_EQ(run_skein("smock " + vertical.string() + " --pull 1,x").status, 2);
   EXPECT_EQ(run_skein("smock " + vertical.string() + " --pull along").status, 0);
 }
+
+TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
+  ScratchDir dir;
+  const std::string pattern = std::string(SKEIN_PATTERNS_DIR) + "/smocking/canadian-lattice.smock";
+  const auto job = dir.write("s.json", "{\"smocking\": {\"pattern\": \"" + pattern + "\", \"pull\": \"along\", \"snapshots\": [0.5]}, \"output\": \"out\"}");
+  const auto r = run_skein("run " + job.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"embedding.json", "threads.obj", "smocking.png", "shrinkage.png", "job.log"}) EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
+  EXPECT_EQ(report["status"], "done");
+  EXPECT_EQ(report["smocking"]["style"], "canadian");
+  EXPECT_EQ(report["smocking"]["pull"], "along");
+  const auto bad = dir.write("b.json", "{\"smocking\": {\"pattern\": \"" + pattern + "\", \"pull\": [1]}, \"mesh\": \"x.obj\"}");
+  const auto refused = run_skein("run " + bad.string());
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.output.find("key 'mesh': is not a key here (known: name, output, pictures, smocking)"), std::string::npos) << refused.output;
+  const auto bad_pull = dir.write("p.json", "{\"smocking\": {\"pattern\": \"" + pattern + "\", \"pull\": [1]}}");
+  EXPECT_NE(run_skein("run " + bad_pull.string()).output.find("key 'smocking.pull': expected [X, Y] (the pulling direction) or \"along\", found [1]"),
+            std::string::npos);
+}
