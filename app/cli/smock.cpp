@@ -71,6 +71,12 @@ json smock(SmockArgs args) {
   const auto lift = smocking::lift(e);
   spdlog::info("{} after {} iterations: the threads at {:.4f} of their sewn length (goal {}), the fabric off eq. 1b by up to {:.1f} %", stop_name(e.stopped),
                e.iterations, e.shrinkage_before_settling, o.gamma, 100 * e.stretch_before_settling);
+  if (e.stopped == smocking::EmbedStop::Stalled && pattern.style != smocking::Style::Canadian && e.shrinkage() < 1.02 * e.taut())
+    spdlog::warn("the threads are taut: every stitch is down to the fabric's thickness ({:.3g} mm), {:.4f} of their sewn length (eq. 1c's lower bound); "
+                 "a smaller --thickness or a larger gamma", e.thickness, e.taut());
+  else if (e.stopped != smocking::EmbedStop::Reached)
+    spdlog::warn("the threads did not reach gamma {}: {}", o.gamma,
+                 e.stopped == smocking::EmbedStop::Stalled ? "they stopped shortening (stitches across the pull do not shorten: try --pull along)" : "the iteration cap");
   if (o.settle)
     spdlog::info("settled in {} sweeps: the threads at {:.4f}, the fabric stretched at most {:.2f} %, neighbours at least {:.2f} thicknesses apart ({:.3f} s in all)",
                  e.settle_iterations, e.shrinkage(), 100 * e.largest_stretch, e.shortest_fabric, seconds);
@@ -95,6 +101,7 @@ json smock(SmockArgs args) {
                  {"thread_length_sewn_mm", e.threads_rest},
                  {"thread_length_mm", e.threads},
                  {"shrinkage", e.shrinkage()},
+                 {"taut", e.taut()},
                  {"largest_fabric_stretch", e.largest_stretch},
                  {"closest_fabric_over_thickness", e.shortest_fabric}};
   if (!args.output.empty()) {

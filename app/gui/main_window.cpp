@@ -1,4 +1,5 @@
 #include "main_window.hpp"
+#include "smocking_dialog.hpp"
 
 #include <algorithm>
 #include <set>
@@ -145,6 +146,12 @@ void MainWindow::build_actions() {
   });
   add(file, tr("Export &picture (.png)..."), "exportPicture", [this] {
     if (const auto path = QFileDialog::getSaveFileName(this, tr("Export picture"), {}, tr("PNG (*.png)")); !path.isEmpty()) export_picture(path);
+  });
+  file->addSeparator();
+  add(file, tr("S&mocking preview..."), "smockingPreview", [this] {
+    auto* dialog = new SmockingDialog(this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    dialog->show();
   });
   file->addSeparator();
   add(file, tr("&Quit"), "quit", [this] { close(); }, QKeySequence::Quit);

@@ -69,6 +69,8 @@ struct Embedding {
   std::vector<double> history;       ///< D(X)/D(X̄) every EmbedOptions::history_every iterations, the first at 0
 
   double shrinkage() const { return threads_rest > 0 ? threads / threads_rest : 1; }
+  /// Eq. 1c's lower bound over D(X̄): the threads pulled taut, every stitch τ long.
+  double taut() const { return threads_rest > 0 ? thickness * stitches.size() / threads_rest : 0; }
 };
 
 /// The mass-spring system of `pattern` (grid springs and stitching springs, Zhou §3).

@@ -12,6 +12,7 @@
 #include <QSpinBox>
 #include <QDir>
 #include <QImage>
+#include <QLabel>
 #include <QMouseEvent>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
@@ -22,6 +23,7 @@
 #include "common/error.hpp"
 #include "cuda/device.hpp"
 #include "main_window.hpp"
+#include "smocking_dialog.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -162,6 +164,35 @@ private slots:
       QVERIFY(!w.document().state().yarn_relaxed);
       QVERIFY(!w.job_running());
     }
+  }
+
+  void a_smocking_pattern_is_previewed_and_gathered() {
+    // Issue 30: File > Smocking preview: a pattern drawn on its grid, gathered at the chosen gamma.
+    MainWindow w;
+    w.show();
+    action(w, "smockingPreview")->trigger();
+    auto* dialog = w.findChild<gui::SmockingDialog*>();
+    QVERIFY(dialog);
+    QTemporaryDir dir;
+    const QString bad = dir.filePath("bad.smock");
+    QFile file(bad);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("format smocking\ngrid 4 4\npath 0,0 5,0\n");
+    file.close();
+    QVERIFY(!dialog->open_pattern(bad));
+    auto* summary = dialog->findChild<QLabel*>("summary");
+    QVERIFY2(summary->text().contains("bad.smock: line 3: point 2 (5,0) is off the grid"), qPrintable(summary->text()));
+    QVERIFY(dialog->open_pattern(kPatterns + "/smocking/zigzag.smock"));
+    QCOMPARE(dialog->findChild<QDoubleSpinBox*>("gamma")->value(), 0.3);
+    const int flat_width = dialog->findChild<QLabel*>("picture")->pixmap().width();
+    QVERIFY(flat_width > 100);
+    dialog->findChild<QDoubleSpinBox*>("gamma")->setValue(0.5);
+    QTest::mouseClick(dialog->findChild<QPushButton*>("gather"), Qt::LeftButton);
+    QVERIFY(dialog->embedding());
+    QCOMPARE(dialog->embedding()->stopped, smocking::EmbedStop::Reached);
+    QVERIFY(dialog->embedding()->shrinkage() <= 0.5 * 1.01);
+    QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // the flat pattern and the gathered fabric
+    QVERIFY2(summary->text().startsWith("reached"), qPrintable(summary->text()));
   }
 
   void a_triangle_mesh_is_traced_from_the_knitting_field() {
