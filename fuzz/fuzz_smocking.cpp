@@ -1,10 +1,13 @@
-// libFuzzer harness: smocking patterns (docs/smocking.md).
+// libFuzzer harness: smocking patterns (docs/smocking.md), as text or drawn as SVG (an input that starts with '<').
 #include "fuzz_support.hpp"
 #include "smocking/smocking_embed.hpp"
+#include "smocking/smocking_svg.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   skein::fuzz::expect_clean([&] {
-    const auto pattern = skein::smocking::parse_smocking_pattern(skein::fuzz::text(data, size), "fuzz.smock");
+    const std::string text = skein::fuzz::text(data, size);
+    const auto pattern = !text.empty() && text[0] == '<' ? skein::smocking::parse_smocking_svg(text, "fuzz.svg")
+                                                         : skein::smocking::parse_smocking_pattern(text, "fuzz.smock");
     // A pattern that reads must also gather, or say why (a few steps: the fuzzer looks for crashes, not pleats).
     skein::smocking::EmbedOptions options;
     options.max_iterations = 50;

@@ -11,7 +11,7 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
   -DSKEIN_FUZZ=ON -DSKEIN_CUDA=OFF -DSKEIN_GUI=OFF -DSKEIN_TESTS=OFF -DSKEIN_BENCH=OFF >/dev/null
 readers=(pattern project job sweep bcc ids stitch_model checkpoint mesh smocking)
 cmake --build build-fuzz --target "${readers[@]/#/fuzz_}"
-declare -A seeds=([pattern]=patterns [project]="models fuzz/seeds/project" [job]=jobs [sweep]=jobs [bcc]=fuzz/seeds/bcc [ids]=fuzz/seeds/ids [stitch_model]=stitches [checkpoint]=fuzz/seeds/checkpoint [mesh]=fuzz/seeds/mesh [smocking]=patterns/smocking)
+declare -A seeds=([pattern]=patterns [project]="models fuzz/seeds/project" [job]=jobs [sweep]=jobs [bcc]=fuzz/seeds/bcc [ids]=fuzz/seeds/ids [stitch_model]=stitches [checkpoint]=fuzz/seeds/checkpoint [mesh]=fuzz/seeds/mesh [smocking]="patterns/smocking fuzz/seeds/smocking")
 rm -rf build-fuzz/crashes
 mkdir -p build-fuzz/crashes
 for reader in "${readers[@]}"; do

@@ -11,6 +11,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libtinygltf-dev
   libcgal-dev
+  libexpat1-dev
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

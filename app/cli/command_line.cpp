@@ -382,7 +382,13 @@ int run_command_line(int argc, char** argv) {
   // skein smock (issue 30)
   auto* smock = app.add_subcommand("smock", "gather a smocking pattern by its threads: Italian, Canadian or English smocking (Zhou 2024 §4.1; docs/smocking.md)");
   SmockArgs sm;
-  smock->add_option("PATTERN", sm.input, "smocking pattern (.smock, docs/smocking.md)")->required();
+  smock->add_option("PATTERN", sm.input, "smocking pattern (.smock, docs/smocking.md), or an .svg drawing of its stitches (front solid, back dashed)")->required();
+  smock->add_option("--style", sm.style, "an .svg drawing's style: italian (default), canadian or english");
+  smock->add_option("--svg-grid", sm.svg.grid, "an .svg drawing's grid spacing in its own units (default: the smallest step between stitch ends)")
+      ->check(CLI::Range(1e-9, 1e9));
+  smock->add_option("--svg-margin", sm.svg.margin, "grid squares of fabric around an .svg drawing's stitches")->capture_default_str()->check(CLI::Range(0, 1000));
+  smock->add_option("--svg-spacing", sm.svg.spacing, "mm between grid points of an .svg drawing's pattern")->capture_default_str()->check(CLI::Range(0.1, 1000.0));
+  smock->add_option("--write-smock", sm.write_smock, "the pattern as .smock text (what an .svg drawing was read as)");
   smock->add_option("-o,--output", sm.output, "the embedding as JSON: grid points flat and gathered, each stitch's lifted midpoint (eqs. 6-8)");
   smock->add_option("--obj", sm.obj, "the threads' positional constraints in 3-D as OBJ lines (z towards the front)");
   smock->add_option("--png", sm.png, "picture: the pattern as drawn, the --snapshots, and the gathered fabric, at one scale");
@@ -390,7 +396,7 @@ int run_command_line(int argc, char** argv) {
   smock->add_option("--report", sm.report, "report (JSON; - for stdout)");
   smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(CLI::Range(1e-6, 1.0));
   smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-6, 1e4));
   smock->add_option("--pull", sm.pull, "pulling direction X,Y, or \"along\": each stitch pulled along itself (the paper's CURVE pattern)")->capture_default_str();
   smock->add_option("--snapshots", sm.options.snapshots, "also keep and draw the fabric when the threads first reach these fractions, e.g. 0.8,0.6,0.4")
       ->delimiter(',')->check(CLI::Range(1e-6, 1.0));
@@ -456,7 +462,12 @@ int run_command_line(int argc, char** argv) {
   // skein devices
   auto* devices = app.add_subcommand("devices", "say which CUDA devices answer");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; a bad option or value is a user's error like any other: exit 2 (README).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   // The log goes to stderr, so that what a command prints as data (--stats -, a script's CSV) stays clean.
   if (!spdlog::get("skein")) spdlog::set_default_logger(spdlog::stderr_color_mt("skein"));  // once a process
   spdlog::set_pattern("[%H:%M:%S.%e] %^%l%$ %v");

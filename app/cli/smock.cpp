@@ -1,5 +1,6 @@
 #include "smock.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -48,7 +49,14 @@ void write_threads_obj(const smocking::Embedding& e, const smocking::Lift& lift,
 }  // namespace
 
 json smock(SmockArgs args) {
-  const auto pattern = smocking::read_smocking_pattern(args.input);
+  const bool drawing = std::filesystem::path(args.input).extension() == ".svg";
+  if (!drawing && !args.style.empty()) throw Error("", "--style", "is for an .svg drawing; a .smock file says its style itself");
+  if (drawing) {
+    if (args.style == "canadian") args.svg.style = smocking::Style::Canadian;
+    else if (args.style == "english") args.svg.style = smocking::Style::English;
+    else if (!args.style.empty() && args.style != "italian") throw Error("", "--style", "expected italian, canadian or english, found \"" + args.style + "\"");
+  }
+  const auto pattern = drawing ? smocking::read_smocking_svg(args.input, args.svg) : smocking::read_smocking_pattern(args.input);
   auto& o = args.options;
   o.gamma = args.gamma.value_or(pattern.gamma);
   if (args.pull == "along") {
@@ -60,9 +68,14 @@ json smock(SmockArgs args) {
     if (!(in >> px >> comma >> py) || comma != ',' || (in >> rest))
       throw Error("", "--pull", "expected X,Y (the pulling direction) or \"along\", found \"" + args.pull + "\"");
     o.pull = {px, py};
+    if (!o.pull.allFinite() || o.pull.norm() == 0) throw Error("", "--pull", "a pulling direction of non-zero length, found \"" + args.pull + "\"");
   }
-  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
+  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.write_smock})
     if (!path.empty() && path != "-") check_writable(path);
+  if (!args.write_smock.empty()) {
+    write_file_atomically(args.write_smock, [&](std::ostream& out) { out << smocking::smocking_text(pattern); });
+    spdlog::info("wrote {}", args.write_smock);
+  }
   spdlog::info("{}: {} smocking, {} x {} grid points {} mm apart, {} threads, {} stitches; gathering to gamma {}", args.input, style_name(pattern.style),
                pattern.columns, pattern.rows, pattern.spacing, pattern.threads.size(), pattern.num_stitches(), o.gamma);
   const Stopwatch clock;
@@ -77,6 +90,9 @@ json smock(SmockArgs args) {
   else if (e.stopped != smocking::EmbedStop::Reached)
     spdlog::warn("the threads did not reach gamma {}: {}", o.gamma,
                  e.stopped == smocking::EmbedStop::Stalled ? "they stopped shortening (stitches across the pull do not shorten: try --pull along)" : "the iteration cap");
+  for (double f : o.snapshots)
+    if (std::none_of(e.snapshots.begin(), e.snapshots.end(), [&](const auto& s) { return s.first == f; }))
+      spdlog::warn("no snapshot at {}: the threads got to {:.4f} of their length", f, e.shrinkage());
   if (o.settle)
     spdlog::info("settled in {} sweeps: the threads at {:.4f}, the fabric stretched at most {:.2f} %, neighbours at least {:.2f} thicknesses apart ({:.3f} s in all)",
                  e.settle_iterations, e.shrinkage(), 100 * e.largest_stretch, e.shortest_fabric, seconds);
@@ -101,7 +117,7 @@ json smock(SmockArgs args) {
                  {"thread_length_sewn_mm", e.threads_rest},
                  {"thread_length_mm", e.threads},
                  {"shrinkage", e.shrinkage()},
-                 {"taut", e.taut()},
+                 {"taut", pattern.style == smocking::Style::Canadian ? json(nullptr) : json(e.taut())},  // knots aim at 0, not τ
                  {"largest_fabric_stretch", e.largest_stretch},
                  {"closest_fabric_over_thickness", e.shortest_fabric}};
   if (!args.output.empty()) {
@@ -124,7 +140,7 @@ json smock(SmockArgs args) {
   }
   if (!args.obj.empty()) write_threads_obj(e, lift, args.obj);
   if (!args.png.empty()) render::write_png(render::draw_smocking(pattern, e), args.png);
-  if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.history_every, o.gamma), args.chart_png);
+  if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.gamma), args.chart_png);
   if (!args.report.empty()) write_json(report, args.report);
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
     if (!path.empty() && path != "-") spdlog::info("wrote {}", path);

@@ -7,11 +7,15 @@
 #include <nlohmann/json.hpp>
 
 #include "smocking/smocking_embed.hpp"
+#include "smocking/smocking_svg.hpp"
 
 namespace skein::cli {
 
 struct SmockArgs {
   std::string input, output, obj, png, chart_png, report;  ///< empty: not written
+  std::string write_smock;         ///< the pattern as .smock text (what an SVG drawing was read as)
+  smocking::SvgImport svg;         ///< how an .svg input is read
+  std::string style;               ///< an .svg input's style: italian (default), canadian or english
   std::optional<double> gamma;     ///< default: the pattern's own
   std::string pull = "1,0";        ///< X,Y or "along"
   smocking::EmbedOptions options;  ///< gamma and pull are set from the two above

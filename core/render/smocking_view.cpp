@@ -67,14 +67,13 @@ Image draw_smocking(const smocking::SmockingPattern& pattern, const smocking::Em
   return side_by_side(panels);
 }
 
-Image draw_shrinkage_chart(const smocking::Embedding& e, int every, double gamma, int pixels) {
+Image draw_shrinkage_chart(const smocking::Embedding& e, double gamma, int pixels) {
   Sketch s;
   // Plot area 0..1.6 across (the iterations), 0..1 up (D/D̄).
   const double w = 1.6, text = 0.045;
-  const size_t n = e.history.size();
-  const double last = std::max<double>(1, static_cast<double>(n - 1) * every);
-  for (size_t k = 1; k < n; ++k)
-    s.stroke({w * (k - 1) * every / last, e.history[k - 1]}, {w * k * every / last, e.history[k]}, 0.008, kFront, 0.03);
+  const double last = std::max(1.0, e.history.back().x());
+  for (size_t k = 1; k < e.history.size(); ++k)
+    s.stroke({w * e.history[k - 1].x() / last, e.history[k - 1].y()}, {w * e.history[k].x() / last, e.history[k].y()}, 0.008, kFront, 0.03);
   for (int k = 0; k < 20; ++k) s.stroke({w * k / 20.0, gamma}, {w * (k + 0.5) / 20.0, gamma}, 0.004, kGoal, 0.02);
   s.stroke({0, 0}, {w, 0}, 0.004, kInk);
   s.stroke({0, 0}, {0, 1}, 0.004, kInk);

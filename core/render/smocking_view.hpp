@@ -12,6 +12,6 @@ namespace skein::render {
 Image draw_smocking(const smocking::SmockingPattern& pattern, const smocking::Embedding& embedding, int pixels = 700);
 
 /// D(X)/D(X̄) against the iterations, with the goal γ as a dashed line; `pixels` wide.
-Image draw_shrinkage_chart(const smocking::Embedding& embedding, int every, double gamma, int pixels = 700);
+Image draw_shrinkage_chart(const smocking::Embedding& embedding, double gamma, int pixels = 700);
 
 }  // namespace skein::render

@@ -112,7 +112,6 @@ Embedding make_mass_spring_system(const SmockingPattern& pattern, double thickne
   }
   e.thickness = thickness > 0 ? thickness : 0.01 * pattern.spacing * std::max(pattern.columns - 1, pattern.rows - 1);
   e.threads_rest = e.threads = thread_length(e.rest, e.stitches);
-  e.shortest_fabric = e.fabric.empty() ? 1 : pattern.spacing / e.thickness;
   return e;
 }
 
@@ -137,52 +136,57 @@ Embedding embed(const SmockingPattern& pattern, const EmbedOptions& options) {
   for (const auto& s : e.stitches) give[s.a] = give[s.b] = 0.1;
   const double goal = options.gamma * e.threads_rest;
   double window_start = e.threads;
-  e.history.push_back(1.0);
+  e.history.emplace_back(0, 1.0);
   take_snapshots(1.0);
-  e.stopped = EmbedStop::IterationCap;
-  for (int it = 0;; ++it) {
-    // Line 3: the stopping criterion, D(X) <= γ D(X̄) (eq. 1c).
-    if (e.threads <= goal) {
-      e.stopped = EmbedStop::Reached;
-      break;
-    }
-    if (it >= options.max_iterations) break;
-    if (it > 0 && it % options.stall_window == 0) {
-      if (window_start - e.threads < options.stall_tolerance * e.threads_rest) {
-        e.stopped = EmbedStop::Stalled;
-        break;
+  // Algorithm 1 from where the fabric is until D(X) <= γ D(X̄) (eq. 1c, line 3), a stall or the cap.
+  const auto steps = [&] {
+    e.stopped = EmbedStop::IterationCap;
+    for (;; ++e.iterations) {
+      if (e.threads <= goal) {
+        e.stopped = EmbedStop::Reached;
+        return;
       }
-      window_start = e.threads;
+      if (e.iterations >= options.max_iterations) return;
+      if (e.iterations > 0 && e.iterations % options.stall_window == 0) {
+        if (window_start - e.threads < options.stall_tolerance * e.threads_rest) {
+          e.stopped = EmbedStop::Stalled;
+          return;
+        }
+        window_start = e.threads;
+      }
+      a.setZero();
+      // Lines 4-6: stitching springs' targets by eq. 5, the stitch's extent across the pull (Canadian: 0, §5.4).
+      for (const auto& s : e.stitches) {
+        const double target = canadian ? 0.0 : options.pull_along_stitches ? tau : std::max(tau, std::abs(across.dot(x.col(s.a) - x.col(s.b))));
+        spring_force(x, s.a, s.b, target, options.k_stitch, a);
+      }
+      // Lines 7-9: fabric springs' targets by eq. 4.
+      fabric_forces(e, x, options.k_fabric, a);
+      // Lines 15-17: damped explicit step, unit masses.
+      v = options.damping * (v + options.time_step * a);
+      x += options.time_step * v;
+      // Keeps eq. 1b as Appendix A says the scheme does.
+      for (int sweep = 0; options.settle && sweep < options.sweeps_per_step && fabric_violation(e, x) > options.settle_tolerance; ++sweep)
+        project_fabric(e, give, x);
+      e.threads = thread_length(x, e.stitches);
+      if ((e.iterations + 1) % options.history_every == 0) e.history.emplace_back(e.iterations + 1, e.threads / e.threads_rest);
+      take_snapshots(e.threads / e.threads_rest);
     }
-    a.setZero();
-    // Lines 4-6: stitching springs' targets by eq. 5, the stitch's extent across the pull (Canadian: 0, §5.4).
-    for (const auto& s : e.stitches) {
-      const double target = canadian ? 0.0 : options.pull_along_stitches ? tau : std::max(tau, std::abs(across.dot(x.col(s.a) - x.col(s.b))));
-      spring_force(x, s.a, s.b, target, options.k_stitch, a);
-    }
-    // Lines 7-9: fabric springs' targets by eq. 4.
-    fabric_forces(e, x, options.k_fabric, a);
-    // Lines 15-17: damped explicit step, unit masses.
-    v = options.damping * (v + options.time_step * a);
-    x += options.time_step * v;
-    // Keeps eq. 1b as Appendix A says the scheme does.
-    for (int sweep = 0; options.settle && sweep < options.sweeps_per_step && fabric_violation(e, x) > options.settle_tolerance; ++sweep)
-      project_fabric(e, give, x);
-    e.threads = thread_length(x, e.stitches);
-    e.iterations = it + 1;
-    if (e.iterations % options.history_every == 0) e.history.push_back(e.threads / e.threads_rest);
-    take_snapshots(e.threads / e.threads_rest);
-  }
-  // The settling pass: the projection repeated until eq. 1b holds to the tolerance.
+  };
+  steps();
   e.stretch_before_settling = fabric_violation(e, x);
   e.shrinkage_before_settling = e.shrinkage();
-  if (options.settle) {
-    while (e.settle_iterations < options.settle_iterations && fabric_violation(e, x) > options.settle_tolerance) {
+  // The settling pass: the projection repeated until eq. 1b holds; where that gives the threads back more than
+  // the tolerance past γ, Algorithm 1 goes on (at most 10 rounds), so that eq. 1c holds too.
+  for (int round = 0; options.settle && round < 10; ++round) {
+    v.setZero();
+    for (int sweep = 0; sweep < options.settle_iterations && fabric_violation(e, x) > options.settle_tolerance; ++sweep, ++e.settle_iterations)
       project_fabric(e, give, x);
-      ++e.settle_iterations;
-    }
     e.threads = thread_length(x, e.stitches);
+    if (e.stopped != EmbedStop::Reached || e.threads <= goal * (1 + options.settle_tolerance)) break;
+    steps();
   }
+  if (e.history.back().x() != e.iterations) e.history.emplace_back(e.iterations, e.shrinkage());
   // How well eq. 1b holds where the run ended.
   e.largest_stretch = 0;
   e.shortest_fabric = std::numeric_limits<double>::infinity();

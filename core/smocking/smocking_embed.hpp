@@ -58,15 +58,15 @@ struct Embedding {
   std::vector<Stitch> stitches;      ///< along the threads (eq. 1c)
   double thickness = 0;              ///< τ used [mm]
   double threads_rest = 0, threads = 0;  ///< D(X̄) and D(X) (eq. 2) [mm]
-  int iterations = 0;
-  int settle_iterations = 0;         ///< sweeps of the settling pass
-  double stretch_before_settling = 0;  ///< the largest violation of eq. 1b where Algorithm 1 stopped
-  double shrinkage_before_settling = 1;  ///< D(X)/D(X̄) where Algorithm 1 stopped
+  int iterations = 0;                ///< Algorithm 1's steps (also those after settling, when it went on)
+  int settle_iterations = 0;         ///< sweeps of the settling passes
+  double stretch_before_settling = 0;  ///< the largest violation of eq. 1b where Algorithm 1 first stopped
+  double shrinkage_before_settling = 1;  ///< D(X)/D(X̄) where Algorithm 1 first stopped
   EmbedStop stopped = EmbedStop::Reached;
   double largest_stretch = 0;        ///< max over fabric springs of length / rest - 1 (eq. 1b's upper bound: 0)
   double shortest_fabric = 0;        ///< min over fabric springs of length / τ (eq. 1b's lower bound: 1)
   std::vector<std::pair<double, Eigen::Matrix2Xd>> snapshots;  ///< (fraction reached, positions)
-  std::vector<double> history;       ///< D(X)/D(X̄) every EmbedOptions::history_every iterations, the first at 0
+  std::vector<Eigen::Vector2d> history;  ///< (iteration, D(X)/D(X̄)) every EmbedOptions::history_every iterations, from 0 to the last
 
   double shrinkage() const { return threads_rest > 0 ? threads / threads_rest : 1; }
   /// Eq. 1c's lower bound over D(X̄): the threads pulled taut, every stitch τ long.

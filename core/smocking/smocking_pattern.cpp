@@ -109,6 +109,19 @@ void check_style(const Reader& reader, const SmockingPattern& p) {
 
 }  // namespace
 
+void check_threads(const SmockingPattern& pattern, const std::string& source) {
+  const Reader reader(source);
+  if (pattern.columns < 2 || pattern.rows < 1 || static_cast<long>(pattern.columns) * pattern.rows > kMaxGridPoints)
+    throw Error(source, "", "a grid of at least 2 x 1 and at most " + std::to_string(kMaxGridPoints) + " points, found " + std::to_string(pattern.columns) +
+                                " x " + std::to_string(pattern.rows));
+  if (pattern.threads.empty()) throw Error(source, "", "no thread");
+  for (const auto& t : pattern.threads) {
+    if (t.points.size() < 2) reader.fail(t.line, "a thread of at least two grid points (one stitch)");
+    check_on_grid(reader, pattern, t, t.line, "");
+  }
+  check_style(reader, pattern);
+}
+
 int SmockingPattern::num_stitches() const {
   int n = 0;
   for (const auto& t : threads) n += static_cast<int>(t.points.size()) - 1;
@@ -127,7 +140,7 @@ const char* style_name(Style style) {
 SmockingPattern parse_smocking_pattern(const std::string& text, const std::string& source) {
   const Reader reader(source);
   SmockingPattern p;
-  std::istringstream in(text);
+  std::istringstream in(text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text);  // a UTF-8 byte order mark is not text
   std::string raw;
   int line = 0, format_line = 0, grid_line = 0;
   long stitches = 0;
@@ -196,7 +209,6 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
           if (std::abs(steps.back().x()) >= p.columns || std::abs(steps.back().y()) >= p.rows) reader.fail(line, words[w], "a step longer than the grid");
         }
         const int n = reader.times(line, words.back());
-        add_stitches(n, line);
         t.points.push_back(at);
         for (int k = 0; k < n; ++k) t.points.push_back(at += steps[k % steps.size()]);
       }
@@ -209,6 +221,7 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
       if (p.threads.empty()) reader.fail(line, words[0], "nothing to repeat yet: write a path or walk first");
       const Eigen::Vector2i shift = reader.pair(line, words[1], "the shift");
       if (std::abs(shift.x()) >= p.columns || std::abs(shift.y()) >= p.rows) reader.fail(line, words[1], "a shift longer than the grid");
+      if (shift.isZero()) reader.fail(line, words[1], "a shift of 0,0 puts every copy on top of the one before");
       const int n = reader.times(line, words[2]);
       const std::vector<Thread> unit = p.threads;
       const int unit_stitches = p.num_stitches();

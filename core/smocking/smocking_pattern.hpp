@@ -41,6 +41,10 @@ struct SmockingPattern {
 
 const char* style_name(Style style);
 
+/// Every thread on the grid with no stitch of zero length, and the style's rules (Table 1); throws skein::Error
+/// naming `source` and each thread's line.
+void check_threads(const SmockingPattern& pattern, const std::string& source);
+
 /// Reads a smocking pattern; throws skein::Error naming the file, the line and the rule broken.
 SmockingPattern read_smocking_pattern(const std::filesystem::path& file);
 /// The same from text; `source` names it in errors.

@@ -1059,3 +1059,19 @@ TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
   EXPECT_NE(run_skein("run " + bad_pull.string()).output.find("key 'smocking.pull': expected [X, Y] (the pulling direction) or \"along\", found [1]"),
             std::string::npos);
 }
+
+TEST(Cli, SmockReadsADrawingAndWritesWhatItReadAsText) {
+  ScratchDir dir;
+  const auto drawing = dir.write("d.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<g transform=\"translate(5,5)\">\n"
+                                          "<line x1=\"0\" y1=\"20\" x2=\"20\" y2=\"0\"/>\n<line x1=\"20\" y1=\"0\" x2=\"40\" y2=\"20\" stroke-dasharray=\"3 2\"/>\n"
+                                          "<line x1=\"40\" y1=\"20\" x2=\"60\" y2=\"0\"/>\n</g>\n</svg>\n");
+  const auto r = run_skein("smock " + drawing.string() + " --write-smock " + (dir / "d.smock").string() + " --report -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // Three grid squares across and one down, a square of fabric around.
+  EXPECT_NE(slurp(dir / "d.smock").find("grid 6 4\nspacing 10\ngamma 0.3\npath front 1,2 2,1 3,2 4,1\n"), std::string::npos) << slurp(dir / "d.smock");
+  const auto own_style = run_skein("smock " + (dir / "d.smock").string() + " --style canadian");
+  EXPECT_EQ(own_style.status, 2) << own_style.output;
+  EXPECT_NE(own_style.output.find("--style: is for an .svg drawing"), std::string::npos) << own_style.output;
+  const auto knots = run_skein("smock " + drawing.string() + " --style canadian");  // its dashed line is a back stitch
+  EXPECT_NE(knots.output.find("d.svg: line 4: Canadian smocking is stitched on the front only"), std::string::npos) << knots.output;
+}

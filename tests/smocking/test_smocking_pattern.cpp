@@ -96,4 +96,7 @@ TEST(SmockingPattern, StepsAndShiftsLongerThanTheGridAreRefused) {
   EXPECT_NE(error_in(kHead + "walk 0,0 2000000000,0 x3\n").find("column 10: a step longer than the grid"), std::string::npos)
       << error_in(kHead + "walk 0,0 2000000000,0 x3\n");
   EXPECT_NE(error_in(kHead + "path 0,0 1,0\nrepeat 0,-5 x2\n").find("a shift longer than the grid"), std::string::npos);
+  EXPECT_NE(error_in(kHead + "path 0,0 1,0\nrepeat 0,0 x2\n").find("a shift of 0,0 puts every copy on top of the one before"), std::string::npos);
+  // A walk's stitches count once against the limit; a byte order mark is not text.
+  EXPECT_EQ(parse_smocking_pattern("\xEF\xBB\xBF" "format smocking\ngrid 2 1\nwalk 0,0 1,0 -1,0 x600000\n", "t").num_stitches(), 600000);
 }
