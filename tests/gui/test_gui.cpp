@@ -111,6 +111,13 @@ bool swatch_yarn_shown(MainWindow& w) {
   return true;
 }
 
+/// `name` in `dir` holding `text`; empty when it could not be written.
+QString write_file(const QTemporaryDir& dir, const QString& name, const QByteArray& text) {
+  QFile file(dir.filePath(name));
+  if (!file.open(QIODevice::WriteOnly) || file.write(text) != text.size()) return {};
+  return file.fileName();
+}
+
 bool same(const gui::EditState& a, const gui::EditState& b) {
   const bool labels = a.labels.has_value() == b.labels.has_value() &&
                       (!a.labels || (a.labels->edges == b.labels->edges && a.labels->rows == b.labels->rows &&
@@ -133,11 +140,8 @@ private slots:
     w.show();
     QVERIFY(QTest::qWaitForWindowExposed(&w));
     QTemporaryDir dir;
-    const QString bad = dir.filePath("broken.obj");
-    QFile file(bad);
-    QVERIFY(file.open(QIODevice::WriteOnly));
-    file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
-    file.close();
+    const QString bad = write_file(dir, "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    QVERIFY(!bad.isEmpty());
     QVERIFY(!w.open_file(bad));
     QVERIFY2(w.last_error().contains("broken.obj"), qPrintable(w.last_error()));
     QVERIFY(w.status_text().startsWith("Error"));
@@ -174,11 +178,8 @@ private slots:
     auto* dialog = w.findChild<gui::SmockingDialog*>();
     QVERIFY(dialog);
     QTemporaryDir dir;
-    const QString bad = dir.filePath("bad.smock");
-    QFile file(bad);
-    QVERIFY(file.open(QIODevice::WriteOnly));
-    file.write("format smocking\ngrid 4 4\npath 0,0 5,0\n");
-    file.close();
+    const QString bad = write_file(dir, "bad.smock", "format smocking\ngrid 4 4\npath 0,0 5,0\n");
+    QVERIFY(!bad.isEmpty());
     QVERIFY(!dialog->open_pattern(bad));
     auto* summary = dialog->findChild<QLabel*>("summary");
     QVERIFY2(summary->text().contains("bad.smock: line 3: point 2 (5,0) is off the grid"), qPrintable(summary->text()));
