@@ -68,7 +68,7 @@ public:
   /// "xN", N >= 1.
   int times(int line, const Word& w) const {
     if (w.text.size() < 2 || w.text[0] != 'x') fail(line, w, "expected a count as xN (x3: three times), found \"" + w.text + "\"");
-    const int n = integer(line, w, std::string_view(w.text).substr(1), "a count");
+    const int n = integer(line, w, std::string_view(w.text).substr(1), "a count of 1 to 1000000");
     if (n < 1 || n > kMaxStitches) fail(line, w, "a count of 1 to " + std::to_string(kMaxStitches) + ", found " + std::to_string(n));
     return n;
   }
@@ -196,6 +196,12 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
       t.line = line;
       size_t w = 1;
       if (w < words.size() && (words[w].text == "front" || words[w].text == "back")) t.first_front = words[w++].text == "front";
+      for (size_t k = w; k < words.size(); ++k) {
+        if (words[k].text == "front" || words[k].text == "back")
+          reader.fail(line, words[k], "\"" + words[k].text + "\" comes right after \"" + key + "\": it says the side of the thread's first stitch");
+        if (words[k].text.size() > 1 && words[k].text[0] == 'x' && k + 1 < words.size())
+          reader.fail(line, words[k], "the count \"" + words[k].text + "\" comes last, after the steps");
+      }
       if (key == "path") {
         for (; w < words.size(); ++w) t.points.push_back(reader.pair(line, words[w], "a grid point"));
         if (t.points.size() < 2) reader.fail(line, words[0], "a path of at least two grid points (one stitch): path [front|back] C,R C,R ...");

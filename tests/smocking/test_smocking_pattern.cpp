@@ -60,6 +60,11 @@ TEST(SmockingPattern, ErrorsNameTheLineColumnAndRule) {
   EXPECT_NE(error_in(kHead + "walk 0,0 1,0 x9\n").find("point 10 (9,0) is off the grid"), std::string::npos);
   EXPECT_NE(error_in(kHead + "walk 0,0 x2\n").find("expected \"walk [front|back] C,R STEP... xN\""), std::string::npos);
   EXPECT_NE(error_in(kHead + "repeat 1,0 x2\n").find("nothing to repeat yet"), std::string::npos);
+  EXPECT_NE(error_in(kHead + "walk 0,1 front 1,0 x2\n").find("column 10: \"front\" comes right after \"walk\""), std::string::npos)
+      << error_in(kHead + "walk 0,1 front 1,0 x2\n");
+  EXPECT_NE(error_in(kHead + "walk 0,1 x2 1,0\n").find("the count \"x2\" comes last, after the steps"), std::string::npos);
+  EXPECT_NE(error_in(kHead + "walk 0,1 1,0 x99999999999\n").find("expected a count of 1 to 1000000 (a whole number)"), std::string::npos)
+      << error_in(kHead + "walk 0,1 1,0 x99999999999\n");
   EXPECT_NE(error_in(kHead + "path 0,0 1,1\nrepeat 4,0 x3\n").find("line 4: copy 3 of the thread of line 3: point 2 (9,1) is off the grid"),
             std::string::npos)
       << error_in(kHead + "path 0,0 1,1\nrepeat 4,0 x3\n");
