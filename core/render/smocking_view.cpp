@@ -10,7 +10,7 @@ namespace skein::render {
 namespace {
 
 const Eigen::Vector3f kFabric(0.72f, 0.72f, 0.74f), kStitchPoint(0.95f, 0.5f, 0.08f), kFront(0.2f, 0.62f, 0.25f), kBack(0.55f, 0.3f, 0.7f),
-    kPleat(0.55f, 0.55f, 0.58f), kPaper(1, 1, 1), kInk(0.15f, 0.15f, 0.2f), kGoal(0.8f, 0.25f, 0.2f);
+    kPleat(0.55f, 0.55f, 0.58f), kPaper(1, 1, 1), kInk(0.15f, 0.15f, 0.2f), kGoal(0.8f, 0.25f, 0.2f), kBead(0.15f, 0.35f, 0.75f);
 
 /// A dashed line (a back stitch, as patterns draw them).
 void dashes(Sketch& s, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double width, double dash, const Eigen::Vector3f& color, double z) {
@@ -32,6 +32,7 @@ Image panel(const smocking::Embedding& e, const Eigen::Matrix2Xd& x, bool as_dra
     else if (as_drawn) dashes(s, a, b, line, 0.15 * spacing, kBack, 0.02);
     else s.stroke(a, b, line, kBack, 0.02);
     if (!as_drawn) s.dot(0.5 * (a + b), 0.7 * dot, st.front ? kFront : kBack, 0.04);
+    if (st.bead > 0) s.ring(0.5 * (a + b), 0.5 * st.bead, 0.4 * line, kBead, 0.06);
   }
   for (int p = 0; p < x.cols(); ++p)
     if (stitched[p]) s.dot(x.col(p), dot, kStitchPoint, 0.05);

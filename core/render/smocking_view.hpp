@@ -1,7 +1,7 @@
 #pragma once
 // Smocking pictures (issue 30): the pattern on its grid and where the 2-D embedding put it, in Zhou 2024's
 // colours (Fig. 5): stitching points orange, front stitches and their midpoints green, back ones purple, pleat
-// points grey; and the threads' shortening over the iterations (Fig. 17).
+// points grey, beads as blue rings; and the threads' shortening over the iterations (Fig. 17).
 #include "render/raster.hpp"
 #include "smocking/smocking_embed.hpp"
 

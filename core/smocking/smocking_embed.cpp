@@ -107,6 +107,8 @@ Embedding make_mass_spring_system(const SmockingPattern& pattern, double thickne
       s.rest = rest_length(s.a, s.b);
       s.thread = static_cast<int>(t);
       s.front = pattern.style == Style::Canadian || thread.front(static_cast<int>(k));
+      for (const auto& b : pattern.beads)
+        if ((thread.points[k] == b.a && thread.points[k + 1] == b.b) || (thread.points[k] == b.b && thread.points[k + 1] == b.a)) s.bead = std::max(s.bead, b.diameter);
       e.stitches.push_back(s);
     }
   }
@@ -155,9 +157,12 @@ Embedding embed(const SmockingPattern& pattern, const EmbedOptions& options) {
         window_start = e.threads;
       }
       a.setZero();
-      // Lines 4-6: stitching springs' targets by eq. 5, the stitch's extent across the pull (Canadian: 0, §5.4).
+      // Lines 4-6: stitching springs' targets by eq. 5, the stitch's extent across the pull (Canadian: 0, §5.4),
+      // never below a bead on it (§5.2).
       for (const auto& s : e.stitches) {
-        const double target = canadian ? 0.0 : options.pull_along_stitches ? tau : std::max(tau, std::abs(across.dot(x.col(s.a) - x.col(s.b))));
+        const double target = std::max(s.bead, canadian                      ? 0.0
+                                               : options.pull_along_stitches ? tau
+                                                                             : std::max(tau, std::abs(across.dot(x.col(s.a) - x.col(s.b)))));
         spring_force(x, s.a, s.b, target, options.k_stitch, a);
       }
       // Lines 7-9: fabric springs' targets by eq. 4.

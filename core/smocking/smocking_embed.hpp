@@ -2,6 +2,7 @@
 // Where the stitched fabric goes when its threads are pulled: the constrained 2-D projection of a coarse
 // mass-spring system (Zhou, Ren and Sorkine-Hornung 2024, §4.1, Algorithm 1), and the 3-D positional
 // constraints lifted from it (§4.2, eqs. 6-8).
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,7 @@ struct Spring {
 struct Stitch : Spring {
   int thread = 0;
   bool front = true;
+  double bead = 0;  ///< the diameter of a bead on it [mm]: its target never below that (§5.2)
 };
 
 enum class EmbedStop { Reached, Stalled, IterationCap };
@@ -69,8 +71,12 @@ struct Embedding {
   std::vector<Eigen::Vector2d> history;  ///< (iteration, D(X)/D(X̄)) every EmbedOptions::history_every iterations, from 0 to the last
 
   double shrinkage() const { return threads_rest > 0 ? threads / threads_rest : 1; }
-  /// Eq. 1c's lower bound over D(X̄): the threads pulled taut, every stitch τ long.
-  double taut() const { return threads_rest > 0 ? thickness * stitches.size() / threads_rest : 0; }
+  /// Eq. 1c's lower bound over D(X̄): the threads pulled taut, every stitch τ long (or its bead's diameter).
+  double taut() const {
+    double d = 0;
+    for (const auto& s : stitches) d += std::max(thickness, s.bead);
+    return threads_rest > 0 ? d / threads_rest : 0;
+  }
 };
 
 /// The mass-spring system of `pattern` (grid springs and stitching springs, Zhou §3).

@@ -120,6 +120,15 @@ void check_threads(const SmockingPattern& pattern, const std::string& source) {
     check_on_grid(reader, pattern, t, t.line, "");
   }
   check_style(reader, pattern);
+  for (const auto& b : pattern.beads) {
+    bool found = false;
+    for (const auto& t : pattern.threads)
+      for (size_t k = 0; k + 1 < t.points.size() && !found; ++k)
+        found = (t.points[k] == b.a && t.points[k + 1] == b.b) || (t.points[k] == b.b && t.points[k + 1] == b.a);
+    if (!found)
+      reader.fail(b.line, "no stitch goes between (" + std::to_string(b.a.x()) + "," + std::to_string(b.a.y()) + ") and (" + std::to_string(b.b.x()) + "," +
+                              std::to_string(b.b.y()) + ") to thread the bead on");
+  }
 }
 
 int SmockingPattern::num_stitches() const {
@@ -221,6 +230,16 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
       check_on_grid(reader, p, t, line, "");
       add_stitches(static_cast<long>(t.points.size()) - 1, line);
       p.threads.push_back(std::move(t));
+    } else if (key == "bead") {
+      // bead C,R C,R MM: a bead on the stitch between the two points (Zhou §5.2).
+      arguments(3, "bead C,R C,R DIAMETER_MM");
+      Bead b;
+      b.a = reader.pair(line, words[1], "a grid point");
+      b.b = reader.pair(line, words[2], "a grid point");
+      b.diameter = reader.number(line, words[3], "the bead's diameter in mm");
+      if (!(b.diameter > 0 && b.diameter <= 1000)) reader.fail(line, words[3], "a bead's diameter of more than 0 and at most 1000 mm, found " + words[3].text);
+      b.line = line;
+      p.beads.push_back(b);
     } else if (key == "repeat") {
       // repeat DC,DR xN: every thread so far, N times in all, each copy shifted by DC,DR from the one before.
       arguments(2, "repeat DC,DR xN");
@@ -230,6 +249,7 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
       if (shift.isZero()) reader.fail(line, words[1], "a shift of 0,0 puts every copy on top of the one before");
       const int n = reader.times(line, words[2]);
       const std::vector<Thread> unit = p.threads;
+      const std::vector<Bead> unit_beads = p.beads;
       const int unit_stitches = p.num_stitches();
       for (int c = 1; c < n; ++c) {
         add_stitches(unit_stitches, line);
@@ -239,15 +259,16 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
           check_on_grid(reader, p, t, line, "copy " + std::to_string(c + 1) + " of the thread of line " + std::to_string(u.line) + ": ");
           p.threads.push_back(std::move(t));
         }
+        for (auto b : unit_beads) b.a += c * shift, b.b += c * shift, p.beads.push_back(b);
       }
     } else {
-      reader.fail(line, words[0], "unknown keyword \"" + key + "\" (expected style, grid, spacing, gamma, path, walk or repeat)");
+      reader.fail(line, words[0], "unknown keyword \"" + key + "\" (expected style, grid, spacing, gamma, path, walk, bead or repeat)");
     }
   }
   if (format_line == 0) throw Error(source, "", "empty: expected \"format smocking\", a grid and at least one thread (docs/smocking.md)");
   if (!grid_line) throw Error(source, "", "no grid: expected \"grid COLUMNS ROWS\"");
   if (p.threads.empty()) throw Error(source, "", "no thread: expected at least one path or walk");
-  check_style(reader, p);
+  check_threads(p, source);
   return p;
 }
 

@@ -24,6 +24,13 @@ struct Thread {
   bool front(int k) const { return (k % 2 == 0) == first_front; }
 };
 
+/// A bead threaded on one stitch (Zhou 2024 §5.2, Fig. 12): the stitch cannot close below its diameter.
+struct Bead {
+  Eigen::Vector2i a, b;  ///< the stitch's two grid points, in either order
+  double diameter = 0;   ///< [mm]
+  int line = 0;
+};
+
 struct SmockingPattern {
   std::string name, note;
   Style style = Style::Italian;
@@ -31,6 +38,7 @@ struct SmockingPattern {
   double spacing = 10;        ///< mm between neighbouring grid points
   double gamma = 0.3;         ///< the threads' length after pulling over their length as sewn (Zhou eq. 1c)
   std::vector<Thread> threads;
+  std::vector<Bead> beads;
 
   int num_points() const { return columns * rows; }
   int index(const Eigen::Vector2i& p) const { return p.y() * columns + p.x(); }

@@ -339,6 +339,7 @@ std::string smocking_text(const SmockingPattern& p) {
     for (const auto& q : t.points) s << " " << q.x() << "," << q.y();
     s << "\n";
   }
+  for (const auto& b : p.beads) s << "bead " << b.a.x() << "," << b.a.y() << " " << b.b.x() << "," << b.b.y() << " " << shortest(b.diameter) << "\n";
   return s.str();
 }
 

@@ -143,3 +143,25 @@ TEST(SmockingEmbed, OptionsAreChecked) {
   o.damping = 1;
   EXPECT_THROW(embed(p, o), Error);
 }
+
+TEST(SmockingEmbed, ABeadKeepsItsStitchOpen) {
+  // Zhou §5.2: a bead on a stitch is a lower bound on its length.
+  const auto p = read_smocking_pattern(std::filesystem::path(SKEIN_PATTERNS_DIR) / "smocking" / "zigzag-beads.smock");
+  ASSERT_EQ(p.beads.size(), 25u);  // five on each of the five threads
+  EmbedOptions o;
+  o.gamma = p.gamma;
+  const auto e = embed(p, o);
+  EXPECT_EQ(e.stopped, EmbedStop::Reached);
+  int beaded = 0;
+  for (const auto& s : e.stitches) {
+    const double length = (e.positions.col(s.a) - e.positions.col(s.b)).norm();
+    if (s.bead > 0) {
+      ++beaded;
+      EXPECT_GE(length, 0.95 * s.bead);
+    }
+  }
+  EXPECT_EQ(beaded, 25);
+  EXPECT_NE(skein::testing::error_of([] { parse_smocking_pattern("format smocking\ngrid 4 2\npath 0,0 1,1 2,0\nbead 0,0 2,0 5\n", "b.smock"); })
+                .find("b.smock: line 4: no stitch goes between (0,0) and (2,0) to thread the bead on"),
+            std::string::npos);
+}
