@@ -93,6 +93,10 @@ json smock(SmockArgs args) {
   for (double f : o.snapshots)
     if (std::none_of(e.snapshots.begin(), e.snapshots.end(), [&](const auto& s) { return s.first == f; }))
       spdlog::warn("no snapshot at {}: the threads got to {:.4f} of their length", f, e.shrinkage());
+  if (o.settle && (e.largest_stretch > 1.001 * o.settle_tolerance || e.shortest_fabric < 1 - 1.001 * o.settle_tolerance))
+    spdlog::warn("eq. 1b does not hold where the run ended: the fabric stretched {:.1f} %, neighbours {:.2f} thicknesses apart (the threads ask more "
+                 "of the fabric than it can give without folding over itself)",
+                 100 * e.largest_stretch, e.shortest_fabric);
   if (o.settle)
     spdlog::info("settled in {} sweeps: the threads at {:.4f}, the fabric stretched at most {:.2f} %, neighbours at least {:.2f} thicknesses apart ({:.3f} s in all)",
                  e.settle_iterations, e.shrinkage(), 100 * e.largest_stretch, e.shortest_fabric, seconds);

@@ -183,12 +183,12 @@ Embedding embed(const SmockingPattern& pattern, const EmbedOptions& options) {
   e.shrinkage_before_settling = e.shrinkage();
   // The settling pass: the projection repeated until eq. 1b holds; where that gives the threads back more than
   // the tolerance past γ, Algorithm 1 goes on (at most 10 rounds), so that eq. 1c holds too.
-  for (int round = 0; options.settle && round < 10; ++round) {
+  for (int round = 0; options.settle; ++round) {
     v.setZero();
     for (int sweep = 0; sweep < options.settle_iterations && fabric_violation(e, x) > options.settle_tolerance; ++sweep, ++e.settle_iterations)
       project_fabric(e, give, x);
     e.threads = thread_length(x, e.stitches);
-    if (e.stopped != EmbedStop::Reached || e.threads <= goal * (1 + options.settle_tolerance)) break;
+    if (e.stopped != EmbedStop::Reached || e.threads <= goal * (1 + options.settle_tolerance) || round == 9) break;
     steps();
   }
   if (e.history.back().x() != e.iterations) e.history.emplace_back(e.iterations, e.shrinkage());

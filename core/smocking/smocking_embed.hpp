@@ -33,7 +33,7 @@ struct EmbedOptions {
   bool settle = true;
   double settle_tolerance = 1e-3;  ///< the largest stretch or squeeze allowed, over the spring's rest length or τ
   int sweeps_per_step = 10;        ///< sweeps after each step at most
-  int settle_iterations = 20'000;  ///< sweeps after the last step at most
+  int settle_iterations = 2'000;   ///< sweeps after the last step at most (the bundled patterns need up to 45)
 
   /// Throws skein::Error naming the option and the rule broken.
   void validate() const;
