@@ -10,6 +10,7 @@
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
 #include "smock.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/tessellation.hpp"
 
 namespace skein::cli {
@@ -36,6 +37,7 @@ struct Job {
   std::optional<SmockingJob> smocking;
   std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label (or the field)
   bool field = false;            ///< "labels": "field": rows traced from the knitting field (issue 25)
+  mesh::KnitStart start;         ///< "start": the border edge (auto and field) or surface point (field) the rows start from
   mesh::StitchSize stitch_size;
   double max_stitches = mesh::kDefaultMaxStitches;  ///< refused past this estimate (check_stitch_count)
   std::vector<JobEdit> edits;

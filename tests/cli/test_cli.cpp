@@ -890,6 +890,41 @@ TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "yarn-relaxed.bcc"));
 }
 
+TEST(Job, FieldRowsStartWhereTheJobSays) {
+  // Issue 25: "start": {"point": [x, y, z]} knits in the round from a surface point, as skein stitch --start-point does.
+  ScratchDir dir;
+  std::string obj;
+  std::istringstream in(slurp(kModels + "/swatch.obj"));
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("f ", 0) != 0) {
+      obj += line + "\n";
+      continue;
+    }
+    std::istringstream f(line.substr(2));
+    std::vector<std::string> corners{std::istream_iterator<std::string>(f), {}};
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k) obj += "f " + corners[0] + " " + corners[k] + " " + corners[k + 1] + "\n";
+  }
+  const auto mesh = dir.write("t.obj", obj);
+  ASSERT_EQ(run_skein("-q stitch " + mesh.string() + " --field --start-point 60,40,0 --stitch-size 12 --stitch-height 10 -o " + (dir / "p.skein").string()).status, 0);
+  const auto stats = nlohmann::json::parse(run_skein("stats " + (dir / "p.skein").string() + " --json").output);
+  const auto job = dir.write("job.json", R"({"mesh": ")" + mesh.string() + R"(", "labels": "field", "start": {"point": [60, 40, 0]},
+    "stitch_size": {"width": 12, "height": 10}, "relax_mesh": false, "relax_yarn": false, "pictures": false})");
+  const auto r = run_skein("-q run " + job.string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
+  EXPECT_EQ(report.at("stitch_mesh").at("faces"), stats.at("faces")) << stats.dump(1);
+  EXPECT_GT(stats.at("increases"), 0);  // rings that grow outwards from the point
+  const auto refused = [&](const std::string& start, const std::string& labels, const std::string& message) {
+    const auto bad = dir.write("bad.json", R"({"mesh": ")" + mesh.string() + R"(", "labels": )" + labels + R"(, "start": )" + start + "}");
+    const auto out = run_skein("run " + bad.string() + " -o " + (dir / "bad").string());
+    EXPECT_EQ(out.status, 2);
+    EXPECT_NE(out.output.find(message), std::string::npos) << out.output;
+  };
+  refused(R"({"edge": 3, "point": [0, 0, 0]})", R"("field")", "key 'start': give \"edge\" (a border edge) or \"point\"");
+  refused(R"({"point": [0, 0]})", R"("field")", "key 'start.point': expected [x, y, z] in the mesh's units, found [0,0]");
+  refused(R"({"point": [0, 0, 0]})", R"("auto")", "key 'start.point': is for \"labels\": \"field\"");
+}
+
 TEST(Job, SigtermLeavesACheckpointToResumeFrom) {
   ScratchDir dir;
   const auto job = dir.write("job.json", swatch_job("", 1000000));  // runs until stopped
