@@ -39,6 +39,21 @@ std::string slurp(const std::filesystem::path& p) {
   s << in.rdbuf();
   return s.str();
 }
+/// An OBJ's polygons fanned into triangles (every other line kept).
+std::string fanned_into_triangles(const std::string& text) {
+  std::string obj;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("f ", 0) != 0) {
+      obj += line + "\n";
+      continue;
+    }
+    std::istringstream f(line.substr(2));
+    std::vector<std::string> corners{std::istream_iterator<std::string>(f), {}};
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k) obj += "f " + corners[0] + " " + corners[k] + " " + corners[k + 1] + "\n";
+  }
+  return obj;
+}
 const std::string kModels = SKEIN_MODELS_DIR;
 /// One line of a stitch ids side file (docs/FORMATS.md).
 struct PointId {
@@ -867,17 +882,7 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
 TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {
   // Issue 25: "labels": "field" traces the rows on any surface, here the bundled swatch fanned into triangles.
   ScratchDir dir;
-  std::string obj;
-  std::istringstream in(slurp(kModels + "/swatch.obj"));
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("f ", 0) != 0) {
-      obj += line + "\n";
-      continue;
-    }
-    std::istringstream f(line.substr(2));
-    std::vector<std::string> corners{std::istream_iterator<std::string>(f), {}};
-    for (std::size_t k = 1; k + 1 < corners.size(); ++k) obj += "f " + corners[0] + " " + corners[k] + " " + corners[k + 1] + "\n";
-  }
+  const std::string obj = fanned_into_triangles(slurp(kModels + "/swatch.obj"));
   const auto mesh = dir.write("swatch-triangles.obj", obj);
   const auto job = dir.write("job.json", R"({"name": "field", "mesh": ")" + mesh.string() + R"(", "labels": "field",
     "stitch_size": {"width": 12, "height": 10}, "relax_yarn": {"max_steps": 40}, "pictures": false})");
@@ -893,17 +898,7 @@ TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {
 TEST(Job, FieldRowsStartWhereTheJobSays) {
   // Issue 25: "start": {"point": [x, y, z]} knits in the round from a surface point, as skein stitch --start-point does.
   ScratchDir dir;
-  std::string obj;
-  std::istringstream in(slurp(kModels + "/swatch.obj"));
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("f ", 0) != 0) {
-      obj += line + "\n";
-      continue;
-    }
-    std::istringstream f(line.substr(2));
-    std::vector<std::string> corners{std::istream_iterator<std::string>(f), {}};
-    for (std::size_t k = 1; k + 1 < corners.size(); ++k) obj += "f " + corners[0] + " " + corners[k] + " " + corners[k + 1] + "\n";
-  }
+  const std::string obj = fanned_into_triangles(slurp(kModels + "/swatch.obj"));
   const auto mesh = dir.write("t.obj", obj);
   ASSERT_EQ(run_skein("-q stitch " + mesh.string() + " --field --start-point 60,40,0 --stitch-size 12 --stitch-height 10 -o " + (dir / "p.skein").string()).status, 0);
   const auto stats = nlohmann::json::parse(run_skein("stats " + (dir / "p.skein").string() + " --json").output);
