@@ -14,6 +14,7 @@
 
 #include "common/error.hpp"
 #include "render/smocking_view.hpp"
+#include "smocking/smocking_svg.hpp"
 
 namespace skein::gui {
 
@@ -22,7 +23,8 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
   auto* open = new QPushButton(tr("&Open pattern..."), this);
   open->setObjectName("openPattern");
   connect(open, &QPushButton::clicked, this, [this] {
-    const auto path = QFileDialog::getOpenFileName(this, tr("Open smocking pattern"), {}, tr("Smocking patterns (*.smock);;All files (*)"));
+    const auto path = QFileDialog::getOpenFileName(this, tr("Open smocking pattern"), {},
+                                                   tr("Smocking patterns and drawings (*.smock *.svg);;All files (*)"));
     if (!path.isEmpty()) open_pattern(path);
   });
   m_gamma = new QDoubleSpinBox(this);
@@ -63,7 +65,9 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
 
 bool SmockingDialog::open_pattern(const QString& path) {
   try {
-    m_pattern = smocking::read_smocking_pattern(path.toStdString());
+    // A drawing (front stitches solid, back dashed) is read as Italian smocking with its grid found from it.
+    m_pattern = path.endsWith(".svg", Qt::CaseInsensitive) ? smocking::read_smocking_svg(path.toStdString())
+                                                           : smocking::read_smocking_pattern(path.toStdString());
   } catch (const Error& e) {
     m_summary->setText(QString::fromStdString(e.what()));
     return false;

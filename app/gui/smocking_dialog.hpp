@@ -19,7 +19,8 @@ class SmockingDialog final : public QDialog {
   Q_OBJECT
 public:
   explicit SmockingDialog(QWidget* parent = nullptr);
-  /// Reads a .smock file and draws it flat; a bad file shows its error in the summary and keeps the last pattern.
+  /// Reads a .smock file or an .svg drawing (as Italian smocking) and draws it flat; a bad file shows its error in
+  /// the summary and keeps the last pattern.
   bool open_pattern(const QString& path);
   /// Gathers the open pattern at the fields' γ and pull and shows it beside the flat pattern.
   void gather();

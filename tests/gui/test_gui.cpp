@@ -194,6 +194,12 @@ private slots:
     QVERIFY(dialog->embedding()->shrinkage() <= 0.5 * 1.01);
     QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // the flat pattern and the gathered fabric
     QVERIFY2(summary->text().startsWith("reached"), qPrintable(summary->text()));
+    // A drawing: four stitches of a zigzag, every second one dashed (a back stitch).
+    const QString drawing = write_file(dir, "d.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<line x1=\"0\" y1=\"10\" x2=\"10\" y2=\"0\"/>\n"
+                                                    "<line x1=\"10\" y1=\"0\" x2=\"20\" y2=\"10\" stroke-dasharray=\"2\"/>\n"
+                                                    "<line x1=\"20\" y1=\"10\" x2=\"30\" y2=\"0\"/>\n</svg>\n");
+    QVERIFY(dialog->open_pattern(drawing));
+    QVERIFY2(summary->text().contains("italian smocking, 6 x 4 grid points, 1 threads, 3 stitches"), qPrintable(summary->text()));
   }
 
   void a_triangle_mesh_is_traced_from_the_knitting_field() {
