@@ -15,24 +15,7 @@ namespace {
 constexpr int kMaxGridPoints = 250'000;  // 500 x 500: Algorithm 1 steps every point thousands of times
 constexpr int kMaxStitches = 1'000'000;
 
-struct Word {
-  std::string text;
-  int column;  // 1-based
-};
-
-std::vector<Word> split(const std::string& line) {
-  std::vector<Word> out;
-  for (size_t i = 0; i < line.size();) {
-    if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
-      ++i;
-      continue;
-    }
-    const size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    out.push_back({line.substr(start, i - start), static_cast<int>(start) + 1});
-  }
-  return out;
-}
+using Word = mesh::Token;
 
 class Reader {
 public:
@@ -161,7 +144,7 @@ SmockingPattern parse_smocking_pattern(const std::string& text, const std::strin
     ++line;
     if (raw.rfind("# name:", 0) == 0) p.name = mesh::trim(raw.substr(7));
     if (raw.rfind("# source:", 0) == 0) p.note = mesh::trim(raw.substr(9));
-    const auto words = split(raw.substr(0, raw.find('#')));
+    const auto words = mesh::split(raw.substr(0, raw.find('#')));
     if (words.empty()) continue;
     const std::string& key = words[0].text;
     if (format_line == 0) {

@@ -28,28 +28,10 @@ struct Tile {
 };
 constexpr Tile kTiles[] = {{"K", "k"}, {"P", "p"}, {"F", "sk"}, {"B", "s"}, {"YS", "ys"}, {"2U", "2u"}, {"Y3Y", "y3y"}};
 
-struct Token {
-  std::string text;
-  int column;  // 1-based
-};
 struct Row {
   std::vector<Token> tokens;
   int line;
 };
-
-std::vector<Token> split(const std::string& line) {
-  std::vector<Token> out;
-  for (size_t i = 0; i < line.size();) {
-    if (std::isspace(static_cast<unsigned char>(line[i]))) {
-      ++i;
-      continue;
-    }
-    const size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    out.push_back({line.substr(start, i - start), static_cast<int>(start) + 1});
-  }
-  return out;
-}
 
 std::string known_types() {
   std::string names;
