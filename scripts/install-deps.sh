@@ -12,6 +12,7 @@ packages=(
   libtinygltf-dev
   libcgal-dev
   libexpat1-dev
+  libopenvdb-dev libboost-iostreams-dev
 )
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done

@@ -1,0 +1,217 @@
+#include "weave.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include <spdlog/spdlog.h>
+
+#include "commands.hpp"
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "render/raster.hpp"
+#include "skein/config.hpp"
+#include "woven/volume.hpp"
+
+namespace skein::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// "#rrggbb,#rrggbb,...": linear albedos.
+std::vector<Eigen::Vector3f> parse_colors(const std::string& text, const std::string& option) {
+  std::vector<Eigen::Vector3f> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    unsigned r = 0, g = 0, b = 0;
+    char tail = 0;
+    if (item.size() != 7 || std::sscanf(item.c_str(), "#%2x%2x%2x%c", &r, &g, &b, &tail) != 3)
+      throw Error("", option, "expected colours as #rrggbb separated by commas, found \"" + item + "\"");
+    const auto linear = [](unsigned v) { return static_cast<float>(std::pow(v / 255.0, 2.2)); };
+    out.emplace_back(linear(r), linear(g), linear(b));
+  }
+  if (out.empty()) throw Error("", option, "needs at least one colour");
+  return out;
+}
+
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 100000 || h > 100000)
+    throw Error("", option, "expected WxH crossings (1 to 100000 each), found \"" + text + "\"");
+  return {w, h};
+}
+
+woven::Weave read_weave(const std::string& path) { return woven::from_pattern(mesh::read_pattern(path)); }
+
+/// A posterized picture: each pixel's colour index, colours numbered in the order they first appear (top row first).
+std::vector<int> picture_labels(const render::Image& image, int& colours) {
+  std::map<std::array<std::uint8_t, 3>, int> index;
+  std::vector<int> labels(static_cast<size_t>(image.width) * image.height);
+  for (size_t k = 0; k < labels.size(); ++k) {
+    const std::array<std::uint8_t, 3> c{image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]};
+    labels[k] = index.emplace(c, static_cast<int>(index.size())).first->second;
+  }
+  colours = static_cast<int>(index.size());
+  return labels;
+}
+
+json score_json(const woven::SynthesisScore& s) {
+  return {{"crossings", s.crossings}, {"correct", s.correct}, {"neighbour_matches", s.matches}, {"best_possible_matches", s.best_matches},
+          {"consistent", s.consistent}, {"continuity", s.continuity}};
+}
+
+}  // namespace
+
+std::vector<woven::Exemplar> bundled_exemplars(const woven::ExemplarOptions& options) {
+  std::vector<woven::Exemplar> out;
+  for (const char* name : {"plain-weave", "twill-3-2", "twill-4-1", "satin-5-2", "basket-2x2"}) {
+    const auto path = std::filesystem::path(SKEIN_SOURCE_DIR) / "patterns" / (std::string(name) + ".weave");
+    woven::ExemplarReport report;
+    out.push_back(woven::make_exemplar(mesh::read_pattern(path), options, &report));
+    spdlog::info("exemplar {}: relaxed in {} steps ({}), {:.2f} s; voxelized {} x {} x {} in {:.2f} s", name, report.steps, report.stopped_by,
+                 report.relax_seconds, out.back().grid.nx, out.back().grid.ny, out.back().grid.nz, report.voxel_seconds);
+  }
+  return out;
+}
+
+json weave_exemplar(const WeaveExemplarArgs& args) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(args.output, error)) throw Error(args.output, "", "is not a folder (make it first)");
+  if (!args.report.empty() && args.report != "-") check_writable(args.report);
+  json report = {{"exemplars", json::array()}};
+  for (const auto& file : args.patterns) {
+    const auto pattern = mesh::read_pattern(file);
+    if (pattern.format != mesh::PatternFormat::Woven) throw Error(file, "", "is a knitting pattern; exemplars are woven (.weave or .wif)");
+    woven::ExemplarReport r;
+    const auto ex = woven::make_exemplar(pattern, args.options, &r);
+    const auto out = std::filesystem::path(args.output) / (std::filesystem::path(file).stem().string() + ".vdb");
+    woven::write_exemplar(ex, out);
+    spdlog::info("{}: {} x {} crossings relaxed in {} steps ({}, {:.2f} s, {} pull-through events), voxelized {} x {} x {} ({:.0f} % filled) in {:.2f} s; wrote {}",
+                 file, ex.weave.warps, ex.weave.wefts, r.steps, r.stopped_by, r.relax_seconds, r.pull_through_events, ex.grid.nx, ex.grid.ny, ex.grid.nz,
+                 100 * r.filled, r.voxel_seconds, out.string());
+    report["exemplars"].push_back({{"pattern", file}, {"output", out.string()}, {"crossings", {ex.weave.warps, ex.weave.wefts}},
+                                   {"voxels", {ex.grid.nx, ex.grid.ny, ex.grid.nz}}, {"voxel_mm", ex.grid.voxel}, {"steps", r.steps},
+                                   {"stopped_by", r.stopped_by}, {"pull_through_events", r.pull_through_events}, {"relax_seconds", r.relax_seconds},
+                                   {"voxel_seconds", r.voxel_seconds}, {"filled", r.filled}, {"weave", woven::to_text(ex.weave)}});
+  }
+  if (!args.report.empty()) write_json(report, args.report);
+  return report;
+}
+
+json weave_volume(const WeaveVolumeArgs& args) {
+  if (args.pattern.empty() == args.picture.empty()) throw Error("", "weave-volume", "give a woven PATTERN or --picture (one of the two)");
+  if (!args.picture.empty() && args.weaves.empty()) throw Error("", "--picture", "needs --weaves: one elementary weave per colour of the picture");
+  for (const auto& path : {args.output, args.png, args.report, args.assignment})
+    if (!path.empty() && path != "-") check_writable(path);
+  // The design (§5.1, §5.2).
+  woven::Weave weave;
+  if (!args.picture.empty()) {
+    const auto image = render::read_png(args.picture);
+    int colours = 0;
+    const auto labels = picture_labels(image, colours);
+    if (colours > static_cast<int>(args.weaves.size()))
+      throw Error(args.picture, "", "has " + std::to_string(colours) + " colours and --weaves names " + std::to_string(args.weaves.size()) +
+                                        " weaves: posterize it, or name one weave per colour");
+    std::vector<woven::Weave> elementary;
+    std::vector<int> map;
+    for (int c = 0; c < colours; ++c) elementary.push_back(read_weave(args.weaves[c])), map.push_back(c);
+    weave = woven::weave_from_labels(labels, image.width, image.height, elementary, map);
+    if (!args.size.empty()) throw Error("", "--size", "is the picture's size (one crossing per pixel); scale the picture instead");
+  } else {
+    const auto repeat = read_weave(args.pattern);
+    const auto [w, h] = args.size.empty() ? std::pair{repeat.warps * std::max(1, 48 / repeat.warps), repeat.wefts * std::max(1, 48 / repeat.wefts)}
+                                          : parse_size(args.size, "--size");
+    weave = woven::tiled(repeat, w, h);
+  }
+  const auto warp_palette = parse_colors(args.warp_colors, "--warp-colors"), weft_palette = parse_colors(args.weft_colors, "--weft-colors");
+  // The exemplars (§4): a folder, or the bundled set.
+  const auto exemplar_start = std::chrono::steady_clock::now();
+  const auto exemplars = args.exemplars.empty() ? bundled_exemplars({}) : woven::read_exemplars(args.exemplars);
+  const double exemplar_seconds = seconds_since(exemplar_start);
+  std::vector<woven::Weave> weaves;
+  json exemplar_names = json::array();
+  for (const auto& e : exemplars) weaves.push_back(e.weave), exemplar_names.push_back(e.name);
+  spdlog::info("{} x {} crossings; {} exemplars ({:.1f} s)", weave.warps, weave.wefts, exemplars.size(), exemplar_seconds);
+  // Synthesis (§5.3, §5.4) and edge fixing (§5.5).
+  const auto synthesis_start = std::chrono::steady_clock::now();
+  const auto assignment = woven::synthesize(weave, weaves, args.synthesis);
+  const double synthesis_seconds = seconds_since(synthesis_start);
+  const auto score = woven::score(weave, weaves, assignment);
+  std::vector<int> warp_color(weave.warps * static_cast<size_t>(weave.wefts)), weft_color(warp_color.size());
+  const int warps_n = static_cast<int>(warp_palette.size());
+  for (int i = 0; i < weave.wefts; ++i)
+    for (int j = 0; j < weave.warps; ++j) {
+      warp_color[static_cast<size_t>(i) * weave.warps + j] = j % warps_n;
+      weft_color[static_cast<size_t>(i) * weave.warps + j] = warps_n + i % static_cast<int>(weft_palette.size());
+    }
+  const auto fix_start = std::chrono::steady_clock::now();
+  const auto volume = woven::make_volume(exemplars, weave, assignment, args.edge_rank, warp_color, weft_color);
+  const double fix_seconds = seconds_since(fix_start);
+  const long crossings = static_cast<long>(weave.warps) * weave.wefts;
+  json report = {{"design", args.picture.empty() ? args.pattern : args.picture},
+                 {"crossings", {weave.warps, weave.wefts}},
+                 {"size_mm", {volume.size().x(), volume.size().y(), volume.size().z()}},
+                 {"exemplars", exemplar_names},
+                 {"exemplar_seconds", exemplar_seconds},
+                 {"synthesis_seconds", synthesis_seconds},
+                 {"synthesis", score_json(score)},
+                 {"randomized", args.synthesis.randomize},
+                 {"effective_voxels", static_cast<double>(crossings) * volume.block_x * volume.block_y * std::round((volume.z_high - volume.z_low) / volume.voxel)},
+                 {"memory_bytes", crossings * (sizeof(woven::Block) + 2 * sizeof(int)) + 2 * crossings * volume.fix.rank() * sizeof(float)}};
+  if (args.edge_rank != 0) {
+    const double before = woven::seam_step(exemplars, assignment), after = woven::seam_step(exemplars, assignment, &volume.fix);
+    report["edge_fixing"] = {{"rank", volume.fix.rank()}, {"kept", volume.fix.kept()}, {"seconds", fix_seconds}, {"seam_step_mm", before},
+                             {"seam_step_fixed_mm", after}};
+    spdlog::info("synthesis {:.2f} s: {} of {} neighbours match (best possible {}), continuity {}; edge fixing (rank {}, {:.1f} % kept) {:.2f} s: seams {:.4f} -> {:.4f} mm",
+                 synthesis_seconds, score.matches, 4 * crossings, score.best_matches, score.continuity, volume.fix.rank(), 100 * volume.fix.kept(),
+                 fix_seconds, before, after);
+  } else {
+    report["edge_fixing"] = nullptr;
+    spdlog::info("synthesis {:.2f} s: {} neighbours match (best possible {}), continuity {}; no edge fixing", synthesis_seconds, score.matches,
+                 score.best_matches, score.continuity);
+  }
+  if (!args.assignment.empty()) {
+    write_file_atomically(args.assignment, [&](std::ostream& out) {
+      out << "# skein weave-volume: per crossing (weft row, warp column) the exemplar block it copies: exemplar x y\n";
+      for (size_t u = 0; u < exemplars.size(); ++u) out << "# exemplar " << u << " " << exemplars[u].name << "\n";
+      for (int i = 0; i < weave.wefts; ++i)
+        for (int j = 0; j < weave.warps; ++j) {
+          const auto& b = assignment.at(i, j);
+          out << i << " " << j << " " << b.exemplar << " " << b.x << " " << b.y << "\n";
+        }
+    });
+    spdlog::info("wrote {}", args.assignment);
+  }
+  if (!args.output.empty()) {
+    int x = 0, y = 0, w = weave.warps, h = weave.wefts;
+    if (!args.region.empty()) {
+      char tail = 0;
+      if (std::sscanf(args.region.c_str(), "%d,%d,%d,%d%c", &x, &y, &w, &h, &tail) != 4) throw Error("", "--region", "expected X,Y,W,H crossings, found \"" + args.region + "\"");
+    } else if (w > 64 || h > 64) {
+      x = std::max(0, w / 2 - 16), y = std::max(0, h / 2 - 16), w = std::min(w, 32), h = std::min(h, 32);
+    }
+    const auto region = woven::volume_region(volume, x, y, w, h);
+    woven::write_exemplar(region, args.output);
+    report["output"] = {{"path", args.output}, {"region", {x, y, w, h}}, {"voxels", {region.grid.nx, region.grid.ny, region.grid.nz}}};
+    spdlog::info("wrote crossings {},{} to {},{} as {} x {} x {} voxels: {}", x, y, x + w, y + h, region.grid.nx, region.grid.ny, region.grid.nz, args.output);
+  }
+  if (!args.png.empty()) {
+    auto options = args.render;
+    options.colors = warp_palette;
+    options.colors.insert(options.colors.end(), weft_palette.begin(), weft_palette.end());
+    woven::WovenRenderReport r;
+    const auto image = woven::render_woven(volume, options, &r);
+    render::write_png(image, args.png);
+    report["render"] = {{"png", args.png}, {"pixels", {options.width, options.height}}, {"samples", options.samples}, {"seconds", r.seconds},
+                        {"seconds_per_megapixel", r.seconds / (1e-6 * options.width * options.height)}, {"lookups", r.lookups}};
+    spdlog::info("rendered {} x {} pixels, {} paths each, in {:.1f} s; wrote {}", options.width, options.height, options.samples, r.seconds, args.png);
+  }
+  if (!args.report.empty()) write_json(report, args.report);
+  return report;
+}
+
+}  // namespace skein::cli
