@@ -440,6 +440,8 @@ int run_command_line(int argc, char** argv) {
   wvol->add_option("--assignment", wv.assignment, "text: each crossing's exemplar block");
   wvol->add_option("--warp-colors", wv.warp_colors, "warp colours #rrggbb, cycled over the warps")->capture_default_str();
   wvol->add_option("--weft-colors", wv.weft_colors, "weft colours #rrggbb, cycled over the wefts")->capture_default_str();
+  wvol->add_flag("--compare-truth", wv.compare_truth, "also relax the design directly as one patch (square, up to 32 x 32 crossings) and report how far "
+                                                    "the synthesized volume is from it; with --png, both rendered side by side (PNG-truth.png)");
   wvol->add_option("--edge-rank", wv.edge_rank, "edge fixing's rank r (§5.5); 0: no edge fixing")->capture_default_str()->check(CLI::Range(0, 256));
   bool wv_fixed = false;
   wvol->add_flag("--no-randomize", wv_fixed, "keep the dynamic program's blocks (no random shifts by the exemplars' symmetries)")

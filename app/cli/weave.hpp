@@ -30,6 +30,7 @@ struct WeaveVolumeArgs {
   std::string png, report, assignment;
   std::string warp_colors = "#2a3a7a", weft_colors = "#d8cfb0";  ///< colours cycled over the warps and the wefts
   int edge_rank = 15;                 ///< 0: no edge fixing
+  bool compare_truth = false;         ///< relax the design directly too and measure the synthesized volume against it
   woven::SynthesisOptions synthesis;
   woven::WovenRenderOptions render;
 };

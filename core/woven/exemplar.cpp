@@ -194,7 +194,8 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
   mesh::Pattern field = pattern;
   field.over.assign(n, std::vector<char>(n, 0));
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) field.over[i][j] = pattern.over[i % pattern.height()][j % pattern.width()];
+    for (int j = 0; j < n; ++j)  // the margin is crossing -1, so the exemplar starts at the repeat's first crossing
+      field.over[i][j] = pattern.over[(i + pattern.height() - 1) % pattern.height()][(j + pattern.width() - 1) % pattern.width()];
   auto yarn = mesh::woven_yarn(field, 1, 1, spacing, options.radius);
   // woven_yarn lays the wefts first (rows bottom to top), then the warps (left to right); each yarn's two end
   // points lie in the margin, half a spacing past its last crossing.
@@ -217,16 +218,19 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
   const auto relaxed = relax::make_cpu_yarn_relaxer(system, targets, relax_options)->run(state);
   const double relax_seconds = seconds_since(start);
   if (relaxed.pull_through_events > 0) throw Error("", "exemplar of " + pattern.name, "the relaxation let yarn pass through yarn");
-  // A patch held only at its yarns' ends may sag or curl as a whole; a scan lies flat on its table. The
-  // quadratic surface that fits the centrelines best is taken out, leaving each yarn's crimp about the middle plane.
-  Eigen::MatrixXd fit_rows(state.points.cols(), 6);
-  for (int p = 0; p < state.points.cols(); ++p) {
-    const double x = state.points(0, p) / spacing, y = state.points(1, p) / spacing;
-    fit_rows.row(p) << 1, x, y, x * x, x * y, y * y;
+  // A patch held only at its yarns' ends sags, curls or wrinkles as a whole; a scan lies flat on its table.
+  // Each point's height is taken relative to the local middle plane: the mean height of the centrelines within
+  // 1.5 spacings of it (the crimp, up and down from one crossing to the next, averages out over that window).
+  const Eigen::Matrix3Xd relaxed_points = state.points;
+  double sag = 0;
+  for (int p = 0; p < relaxed_points.cols(); ++p) {
+    double sum = 0;
+    int count = 0;
+    for (int q = 0; q < relaxed_points.cols(); ++q)
+      if ((relaxed_points.col(q).head<2>() - relaxed_points.col(p).head<2>()).norm() < 1.5 * spacing) sum += relaxed_points(2, q), ++count;
+    state.points(2, p) -= sum / count;
+    sag = std::max(sag, std::abs(sum / count));
   }
-  const Eigen::VectorXd heights = state.points.row(2).transpose();
-  const Eigen::VectorXd surface = fit_rows * fit_rows.colPivHouseholderQr().solve(heights);
-  state.points.row(2) -= surface.transpose();
   const auto placed = relax::with_points(yarn, state.points);
   // A weave too close for its yarn buckles out of the fabric's plane (beyond the sag taken out).
   for (const auto& p : placed.points)
@@ -251,7 +255,7 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
     report->stopped_by = relaxed.stopped_by;
     report->pull_through_events = relaxed.pull_through_events;
     report->relax_seconds = relax_seconds;
-    report->sag = surface.cwiseAbs().maxCoeff();
+    report->sag = sag;
     report->voxel_seconds = seconds_since(voxel_start);
     report->filled = static_cast<double>(std::count_if(ex.grid.yarn.begin(), ex.grid.yarn.end(), [](auto y) { return y >= 0; })) / ex.grid.size();
   }

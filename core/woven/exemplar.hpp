@@ -65,12 +65,12 @@ struct ExemplarReport {
   std::string stopped_by;
   long pull_through_events = 0;
   double relax_seconds = 0, voxel_seconds = 0;
-  double sag = 0;           ///< the largest height of the quadratic sag taken out of the relaxed patch [mm]
+  double sag = 0;           ///< the largest height of the local middle plane taken out of the relaxed patch [mm]
   double filled = 0;        ///< share of voxels with fibres
 };
 
 /// Relaxes the pattern's yarn over crossings + 2 crossings each way (a margin of one, whose ends are held),
-/// takes the patch's overall sag out (the best-fitting quadratic surface),
+/// takes the patch's sag and wrinkles out (heights relative to the local middle plane),
 /// checks the relaxed yarn's crossing order against the pattern (§6.2; throws skein::Error if a yarn slipped
 /// to the other side), gives each yarn twisted plies, and voxelizes density, fibre direction and yarn id
 /// over the inner crossings x crossings (§6.3: each voxel goes to the nearest centreline).

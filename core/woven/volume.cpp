@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
@@ -265,6 +266,42 @@ Exemplar volume_region(const WovenVolume& v, int warp0, int weft0, int warps, in
         g.yarn[k] = static_cast<std::int16_t>(s.warp ? x / v.block_x : warps + y / v.block_y);
       }
   return out;
+}
+
+VolumeDifference compare_grids(const VoxelGrid& a, const VoxelGrid& b, int warps) {
+  if (a.nx != b.nx || a.ny != b.ny || std::abs(a.voxel - b.voxel) > 1e-9) throw Error("", "comparison", "the two grids differ in size or voxel");
+  const int dz = static_cast<int>(std::lround((b.origin.z() - a.origin.z()) / a.voxel));  // b's layer k is a's k + dz
+  double diff = 0, mass = 0, angle = 0, surface = 0;
+  long either = 0, both = 0, surfaces = 0, agree = 0;
+  for (int y = 0; y < a.ny; ++y)
+    for (int x = 0; x < a.nx; ++x) {
+      double top_a = std::numeric_limits<double>::quiet_NaN(), top_b = top_a;
+      bool warp_a = false, warp_b = false;
+      for (int z = std::min(0, dz); z < std::max(a.nz, b.nz + dz); ++z) {
+        const bool in_a = z >= 0 && z < a.nz, in_b = z - dz >= 0 && z - dz < b.nz;
+        const size_t ia = in_a ? a.index(x, y, z) : 0, ib = in_b ? b.index(x, y, z - dz) : 0;
+        const float ra = in_a ? a.density[ia] : 0.0f, rb = in_b ? b.density[ib] : 0.0f;
+        if (ra > 0.05f) top_a = z, warp_a = a.yarn[ia] < warps;
+        if (rb > 0.05f) top_b = z, warp_b = b.yarn[ib] < warps;
+        if (ra <= 0 && rb <= 0) continue;
+        ++either;
+        diff += std::abs(ra - rb);
+        mass += 0.5 * (ra + rb);
+        if (ra > 0 && rb > 0) {
+          ++both;
+          const double c = std::min(1.0, static_cast<double>(std::abs(a.orientation[ia].dot(b.orientation[ib]))));
+          angle += std::acos(c) * 180 / std::numbers::pi;
+        }
+      }
+      if (std::isfinite(top_a) && std::isfinite(top_b)) surface += std::abs(top_a - top_b) * a.voxel, ++surfaces, agree += warp_a == warp_b;
+    }
+  VolumeDifference d;
+  d.density_error = mass > 0 ? diff / mass : 0;
+  d.occupancy = either > 0 ? static_cast<double>(both) / either : 1;
+  d.orientation_deg = both > 0 ? angle / both : 0;
+  d.surface_error = surfaces > 0 ? surface / surfaces : 0;
+  d.top_agreement = surfaces > 0 ? static_cast<double>(agree) / surfaces : 1;
+  return d;
 }
 
 }  // namespace skein::woven

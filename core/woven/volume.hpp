@@ -73,4 +73,16 @@ WovenVolume make_volume(const std::vector<Exemplar>& exemplars, const Weave& wea
 /// [weft0, weft0 + wefts), at the exemplars' voxel size.
 Exemplar volume_region(const WovenVolume& volume, int warp0, int weft0, int warps, int wefts);
 
+/// Two voxel grids of one fabric compared voxel by voxel (same voxel size and x, y layout; z matched by height):
+/// how far a synthesized volume is from the directly relaxed truth.
+struct VolumeDifference {
+  double density_error = 0;      ///< mean |ρa - ρb| over the voxels either fills, over the mean ρ there
+  double occupancy = 0;          ///< voxels both fill over voxels either fills (intersection over union)
+  double orientation_deg = 0;    ///< mean angle between the fibre directions (as lines) where both fill
+  double surface_error = 0;      ///< mean step between the two top surfaces where both have fibres [mm]
+  double top_agreement = 0;      ///< voxel columns whose topmost fibres are of the same kind (warp or weft) in both
+};
+/// `warps`: yarn ids below it are warps in both grids (exemplar numbering).
+VolumeDifference compare_grids(const VoxelGrid& a, const VoxelGrid& b, int warps);
+
 }  // namespace skein::woven
