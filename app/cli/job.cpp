@@ -144,9 +144,50 @@ Job parse_job(const std::string& text, const fs::path& file) {
     job.pictures = k.flag("pictures", true);
     return job;
   }
+  if (k.has("weave")) {
+    // A weaving job (docs/woven.md): a design, the exemplars, the synthesis and the picture.
+    k.only({"name", "weave", "output", "pictures"});
+    const Keys w(k.at("weave"), "weave", file);
+    w.only({"pattern", "picture", "weaves", "exemplars", "size", "edge_rank", "randomize", "seed", "warp_colors", "weft_colors", "width", "height", "samples",
+            "tilt", "field", "compare_truth"});
+    WeavingJob s;
+    auto& a = s.args;
+    if (w.has("pattern") == w.has("picture")) w.fail(w.name("pattern"), "give a woven pattern (.weave or .wif) or a picture, one of the two");
+    if (w.has("pattern")) a.pattern = w.file("pattern").string();
+    if (w.has("picture")) {
+      a.picture = w.file("picture").string();
+      const json& list = w.has("weaves") ? w.at("weaves") : json();
+      if (!list.is_array() || list.empty()) w.fail(w.name("weaves"), "expected a list of woven patterns, one per colour of the picture");
+      for (size_t i = 0; i < list.size(); ++i) {
+        const json entry = {{std::to_string(i), list[i]}};  // Keys holds a reference: the object must outlive it
+        const Keys item(entry, w.name("weaves"), file);
+        a.weaves.push_back(item.file(std::to_string(i)).string());
+      }
+    } else if (w.has("weaves")) {
+      w.fail(w.name("weaves"), "is for a picture's colours; a pattern is one weave");
+    }
+    if (w.has("exemplars")) a.exemplars = w.file("exemplars").string();
+    a.size = w.text("size", "");
+    a.edge_rank = static_cast<int>(w.integer("edge_rank", a.edge_rank, 0, 256));
+    a.synthesis.randomize = w.flag("randomize", true);
+    a.synthesis.seed = static_cast<std::uint64_t>(w.integer("seed", 1, 0, 1L << 62));
+    a.warp_colors = w.text("warp_colors", a.warp_colors);
+    a.weft_colors = w.text("weft_colors", a.weft_colors);
+    a.render.width = static_cast<int>(w.integer("width", a.render.width, 8, 8192));
+    a.render.height = static_cast<int>(w.integer("height", a.render.height, 8, 8192));
+    a.render.samples = static_cast<int>(w.integer("samples", a.render.samples, 1, 65536));
+    a.render.tilt = w.number("tilt", a.render.tilt, 0, 80);
+    a.render.field = w.number("field", 0, 0, 1e6);
+    a.compare_truth = w.flag("compare_truth", false);
+    job.weaving = std::move(s);
+    job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();
+    job.pictures = k.flag("pictures", true);
+    return job;
+  }
   k.only({"name", "mesh", "labels", "start", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures",
-          "smocking"});
-  if (!k.has("mesh")) k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project), or \"smocking\" for a smocking job");
+          "smocking", "weave"});
+  if (!k.has("mesh"))
+    k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project), \"smocking\" for a smocking job or \"weave\" for a weaving job");
   job.mesh = k.file("mesh");
   const std::string labels = k.text("labels", "auto");
   if (labels == "field") job.field = true;
@@ -309,6 +350,24 @@ int run_job(const Job& job, bool resume, bool progress) {
     }
     run.finish(status == 0 ? "done" : "stalled");
     return status;
+  }
+  if (job.weaving) {
+    if (resume) throw Error(job.file.string(), "key 'weave'", "a weaving job has nothing to resume");
+    try {
+      run.stage("synthesize the woven volume", [&] {
+        WeaveVolumeArgs args = job.weaving->args;
+        args.output = run.out("volume.vdb");
+        args.assignment = run.out("assignment.txt");
+        if (job.pictures) args.png = run.out("render.png");
+        run.report()["weave"] = weave_volume(args);
+      });
+    } catch (const Error& e) {
+      run.report()["error"] = e.what();
+      run.finish("failed");
+      throw;
+    }
+    run.finish("done");
+    return 0;
   }
   try {
     mesh::Project project;

@@ -10,6 +10,7 @@
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
 #include "smock.hpp"
+#include "weave.hpp"
 #include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/tessellation.hpp"
 
@@ -30,11 +31,17 @@ struct SmockingJob {
   SmockArgs args;  ///< gamma, pull and options; the output paths are set in the job's folder
 };
 
+/// A weaving job (issue 29): a woven design's appearance volume synthesized from exemplars and rendered.
+struct WeavingJob {
+  WeaveVolumeArgs args;  ///< the design, exemplars and settings; the output paths are set in the job's folder
+};
+
 struct Job {
   std::filesystem::path file;    ///< the job file; relative paths in it are relative to its folder
   std::string name;
   std::filesystem::path mesh;    ///< the garment; empty for a smocking job
   std::optional<SmockingJob> smocking;
+  std::optional<WeavingJob> weaving;
   std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label (or the field)
   bool field = false;            ///< "labels": "field": rows traced from the knitting field (issue 25)
   mesh::KnitStart start;         ///< "start": the border edge (auto and field) or surface point (field) the rows start from
