@@ -1,9 +1,11 @@
 // Exemplars as OpenVDB files (issue 29): density, fibre direction and yarn id as three grids, the weave and
 // the block layout as file metadata. Kept apart from exemplar.cpp so that only this file sees OpenVDB.
 #include <algorithm>
+#include <cstring>
 
 #include <openvdb/openvdb.h>
 
+#include "common/contained.hpp"
 #include "common/error.hpp"
 #include "woven/exemplar.hpp"
 
@@ -26,6 +28,55 @@ typename GridT::Ptr grid_named(const openvdb::GridPtrVecPtr& grids, const std::s
       return grid;
     }
   throw Error(file, "grid " + name, "is missing (an exemplar holds the grids density, orientation and yarn)");
+}
+
+/// An exemplar as bytes, to come back from the child process that parsed it.
+template <class T>
+void put(std::string& out, const T* data, size_t count) {
+  out.append(reinterpret_cast<const char*>(&count), sizeof count);
+  out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+template <class T>
+std::vector<T> take(const std::string& in, size_t& at) {
+  size_t count = 0;
+  std::memcpy(&count, in.data() + at, sizeof count);
+  at += sizeof count;
+  std::vector<T> v(count);
+  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  at += count * sizeof(T);
+  return v;
+}
+
+std::string pack(const Exemplar& ex) {
+  std::string out;
+  const std::string weave = to_text(ex.weave);
+  put(out, ex.name.data(), ex.name.size());
+  put(out, weave.data(), weave.size());
+  const int ints[] = {ex.block_x, ex.block_y, ex.grid.nx, ex.grid.ny, ex.grid.nz};
+  const double doubles[] = {ex.spacing, ex.radius, ex.grid.voxel, ex.grid.origin.x(), ex.grid.origin.y(), ex.grid.origin.z()};
+  put(out, ints, 5);
+  put(out, doubles, 6);
+  put(out, ex.grid.density.data(), ex.grid.density.size());
+  put(out, ex.grid.orientation.data(), ex.grid.orientation.size());
+  put(out, ex.grid.yarn.data(), ex.grid.yarn.size());
+  return out;
+}
+
+Exemplar unpack(const std::string& in, const std::string& file) {
+  size_t at = 0;
+  Exemplar ex;
+  const auto name = take<char>(in, at), weave = take<char>(in, at);
+  ex.name.assign(name.begin(), name.end());
+  ex.weave = from_text(std::string(weave.begin(), weave.end()), file);
+  const auto ints = take<int>(in, at);
+  const auto doubles = take<double>(in, at);
+  ex.block_x = ints[0], ex.block_y = ints[1], ex.grid.nx = ints[2], ex.grid.ny = ints[3], ex.grid.nz = ints[4];
+  ex.spacing = doubles[0], ex.radius = doubles[1], ex.grid.voxel = doubles[2];
+  ex.grid.origin = {doubles[3], doubles[4], doubles[5]};
+  ex.grid.density = take<float>(in, at);
+  ex.grid.orientation = take<Eigen::Vector3f>(in, at);
+  ex.grid.yarn = take<std::int16_t>(in, at);
+  return ex;
 }
 
 std::string voxel_name(const openvdb::Coord& c) {
@@ -81,7 +132,8 @@ void write_exemplar(const Exemplar& ex, const std::filesystem::path& path) {
   }
 }
 
-Exemplar read_exemplar(const std::filesystem::path& path) {
+/// Parses the file here (read_exemplar runs this in a child process).
+static Exemplar parse_exemplar(const std::filesystem::path& path) {
   openvdb::initialize();
   const std::string file_name = path.string();
   openvdb::io::File file(file_name);
@@ -121,7 +173,7 @@ Exemplar read_exemplar(const std::filesystem::path& path) {
   if (g.nx != ex.block_x * ex.weave.warps || g.ny != ex.block_y * ex.weave.wefts)
     throw Error(file_name, "metadata skein_size", "is not the weave's crossings times the block size");
   if (!(g.voxel > 0) || !(ex.spacing > 0) || !(ex.radius > 0)) throw Error(file_name, "metadata", "needs a positive voxel size, spacing and radius");
-  if (g.size() > 512ull * 1024 * 1024) throw Error(file_name, "metadata skein_size", "is larger than 512 M voxels");
+  if (g.size() > 64ull * 1024 * 1024) throw Error(file_name, "metadata skein_size", "is larger than 64 M voxels");
   g.allocate();
   const auto density = grid_named<openvdb::FloatGrid>(grids, "density", file_name);
   const auto orientation = grid_named<openvdb::Vec3SGrid>(grids, "orientation", file_name);
@@ -147,6 +199,16 @@ Exemplar read_exemplar(const std::filesystem::path& path) {
     g.orientation[g.index(c.x(), c.y(), c.z())] = Eigen::Vector3f(v.x(), v.y(), v.z());
   }
   return ex;
+}
+
+Exemplar read_exemplar(const std::filesystem::path& path) {
+  // OpenVDB parses the file in a child process, under a memory limit and a deadline: a few wrong bytes can make
+  // it allocate gigabytes for a name (fuzzing found one that took 24 s before the error).
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path.string(), "", "is not a readable OpenVDB file: no such file");
+  auto limits = ContainedLimits::from_environment();
+  if (!(limits.seconds > 0)) limits.seconds = 10 + 2 * static_cast<double>(std::filesystem::file_size(path, ec)) / 1e6;
+  return unpack(run_contained(path.string(), "the OpenVDB reader", limits, [&] { return pack(parse_exemplar(path)); }), path.string());
 }
 
 std::vector<Exemplar> read_exemplars(const std::filesystem::path& folder) {

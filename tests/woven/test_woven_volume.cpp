@@ -98,6 +98,16 @@ TEST(WovenExemplar, OpenVdbFilesRoundTripAndBrokenOnesAreNamed) {
   const auto cut = dir.write("cut.vdb", bytes.substr(0, bytes.size() / 2));
   EXPECT_NE(skein::testing::error_of([&] { read_exemplar(cut); }).find("cut.vdb"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([&] { read_exemplar(dir / "missing.vdb"); }).find("missing.vdb"), std::string::npos);
+  // A length in the metadata made huge: OpenVDB would allocate it; in its child process that is an error.
+  std::string huge = bytes;
+  const auto at = huge.find("skein_exemplar");
+  ASSERT_NE(at, std::string::npos);
+  huge[at + 14 + 4 + 6 + 3] = '\x7f';  // past the name, the type name's length and "string": the value's length, top byte
+  const auto blown = dir.write("huge.vdb", huge);
+  ::setenv("SKEIN_READER_GB", "0.5", 1);
+  const auto message = skein::testing::error_of([&] { read_exemplar(blown); });
+  ::unsetenv("SKEIN_READER_GB");
+  EXPECT_NE(message.find("huge.vdb: is not a readable OpenVDB file"), std::string::npos) << message;
   std::filesystem::create_directories(dir / "empty");
   EXPECT_NE(skein::testing::error_of([&] { read_exemplars(dir / "empty"); }).find("holds no .vdb exemplars"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([&] { write_exemplar(ex, dir / "no-folder" / "x.vdb"); }).find("could not be written"), std::string::npos);
