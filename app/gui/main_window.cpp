@@ -1,5 +1,6 @@
 #include "main_window.hpp"
 #include "smocking_dialog.hpp"
+#include "woven_dialog.hpp"
 
 #include <algorithm>
 #include <set>
@@ -150,6 +151,11 @@ void MainWindow::build_actions() {
   file->addSeparator();
   add(file, tr("S&mocking preview..."), "smockingPreview", [this] {
     auto* dialog = new SmockingDialog(this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    dialog->show();
+  });
+  add(file, tr("&Woven preview..."), "wovenPreview", [this] {
+    auto* dialog = new WovenDialog(this);
     dialog->setAttribute(Qt::WA_DeleteOnClose);
     dialog->show();
   });

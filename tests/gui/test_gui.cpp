@@ -24,6 +24,8 @@
 #include "cuda/device.hpp"
 #include "main_window.hpp"
 #include "smocking_dialog.hpp"
+#include "woven/exemplar.hpp"
+#include "woven_dialog.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -200,6 +202,37 @@ private slots:
                                                     "<line x1=\"20\" y1=\"10\" x2=\"30\" y2=\"0\"/>\n</svg>\n");
     QVERIFY(dialog->open_pattern(drawing));
     QVERIFY2(summary->text().contains("italian smocking, 6 x 4 grid points, 1 threads, 3 stitches"), qPrintable(summary->text()));
+  }
+
+  void a_woven_design_is_synthesized_and_rendered() {
+    // Issue 29: File > Woven preview: a design synthesized from exemplars and path traced on a worker thread.
+    MainWindow w;
+    w.show();
+    action(w, "wovenPreview")->trigger();
+    auto* dialog = w.findChild<gui::WovenDialog*>();
+    QVERIFY(dialog);
+    QTemporaryDir dir;
+    woven::ExemplarOptions small;
+    small.crossings = 4;
+    small.voxels_per_crossing = 8;
+    for (const char* name : {"plain-weave", "twill-3-2"})
+      woven::write_exemplar(woven::make_exemplar(mesh::read_pattern((kPatterns + "/" + name + ".weave").toStdString()), small),
+                            (dir.path() + "/" + name + ".vdb").toStdString());
+    auto* summary = dialog->findChild<QLabel*>("summary");
+    QVERIFY(!dialog->open_exemplars(dir.path() + "/missing"));
+    QVERIFY2(summary->text().contains("is not a folder of exemplars"), qPrintable(summary->text()));
+    QVERIFY(dialog->open_exemplars(dir.path()));
+    QVERIFY(!dialog->open_design(kPatterns + "/rib-2x2.knit"));
+    QVERIFY2(summary->text().contains("is knitted, not woven"), qPrintable(summary->text()));
+    QVERIFY(dialog->open_design(kPatterns + "/twill-2-1.weave"));
+    dialog->findChild<QSpinBox*>("warps")->setValue(6);
+    dialog->findChild<QSpinBox*>("wefts")->setValue(6);
+    dialog->findChild<QSpinBox*>("samples")->setValue(1);
+    dialog->findChild<QSpinBox*>("width")->setValue(48);
+    QTest::mouseClick(dialog->findChild<QPushButton*>("render"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(dialog->has_picture(), 60000);
+    QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 48);
+    QVERIFY2(summary->text().contains("6 x 6 crossings from 2 exemplars"), qPrintable(summary->text()));
   }
 
   void a_triangle_mesh_is_traced_from_the_knitting_field() {
