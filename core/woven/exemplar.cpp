@@ -241,7 +241,16 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
   for (int j = 1; j <= options.crossings; ++j) warps.push_back(n + j);
   for (int i = 1; i <= options.crossings; ++i) wefts.push_back(i);
   const auto voxel_start = std::chrono::steady_clock::now();
-  Exemplar ex = voxelize(placed, warps, wefts, {0.5 * spacing, 0.5 * spacing}, options);
+  // §6.5 weaving grid registration: the window moves with the relaxed yarn, so that on average the inner warps
+  // and wefts run through the middles of their blocks (warp j was laid at x = j s, weft i at y = i s).
+  Eigen::Vector2d drift = Eigen::Vector2d::Zero();
+  Eigen::Vector2i counted = Eigen::Vector2i::Zero();
+  for (int k = 1; k <= options.crossings; ++k) {
+    for (int p = yarn.curve_start[k] + 2; p < yarn.curve_start[k + 1] - 2; ++p) drift.y() += state.points(1, p) - k * spacing, ++counted.y();
+    for (int p = yarn.curve_start[n + k] + 2; p < yarn.curve_start[n + k + 1] - 2; ++p) drift.x() += state.points(0, p) - k * spacing, ++counted.x();
+  }
+  drift = drift.cwiseQuotient(counted.cast<double>());
+  Exemplar ex = voxelize(placed, warps, wefts, Eigen::Vector2d::Constant(0.5 * spacing) + drift, options);
   ex.name = pattern.name;
   // §6.2: the relaxed yarn must still be the pattern's weave.
   for (int i = 0; i < options.crossings; ++i)
