@@ -9,10 +9,9 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPushButton>
-#include <QScrollArea>
-#include <QVBoxLayout>
 
 #include "common/error.hpp"
+#include "preview_layout.hpp"
 #include "render/smocking_view.hpp"
 #include "smocking/smocking_svg.hpp"
 
@@ -47,19 +46,9 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
   form->addRow(tr("Pull"), m_pull);
   controls->addLayout(form);
   controls->addWidget(gather_button);
-  m_picture = new QLabel(this);
-  m_picture->setObjectName("picture");
-  m_picture->setAlignment(Qt::AlignCenter);
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidget(m_picture);
-  scroll->setWidgetResizable(true);
-  m_summary = new QLabel(tr("Open a smocking pattern (.smock), then Gather."), this);
-  m_summary->setObjectName("summary");
-  m_summary->setWordWrap(true);
-  auto* layout = new QVBoxLayout(this);
-  layout->addLayout(controls);
-  layout->addWidget(scroll, 1);
-  layout->addWidget(m_summary);
+  const auto preview = lay_out_preview(this, controls, tr("Open a smocking pattern (.smock), then Gather."));
+  m_picture = preview.picture;
+  m_summary = preview.summary;
   resize(1100, 560);
 }
 

@@ -10,11 +10,11 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPushButton>
-#include <QScrollArea>
 #include <QSpinBox>
 #include <QVBoxLayout>
 
 #include "common/error.hpp"
+#include "preview_layout.hpp"
 #include "skein/config.hpp"
 #include "woven/synthesis.hpp"
 #include "woven/volume.hpp"
@@ -79,19 +79,9 @@ WovenDialog::WovenDialog(QWidget* parent) : QDialog(parent) {
   controls->addLayout(buttons);
   controls->addLayout(form);
   controls->addWidget(m_render);
-  m_picture = new QLabel(this);
-  m_picture->setObjectName("picture");
-  m_picture->setAlignment(Qt::AlignCenter);
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidget(m_picture);
-  scroll->setWidgetResizable(true);
-  m_summary = new QLabel(tr("Open a woven design (.weave or .wif), then Render."), this);
-  m_summary->setObjectName("summary");
-  m_summary->setWordWrap(true);
-  auto* layout = new QVBoxLayout(this);
-  layout->addLayout(controls);
-  layout->addWidget(scroll, 1);
-  layout->addWidget(m_summary);
+  const auto preview = lay_out_preview(this, controls, tr("Open a woven design (.weave or .wif), then Render."));
+  m_picture = preview.picture;
+  m_summary = preview.summary;
   resize(900, 600);
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/input_file.hpp"
 #include "skein/config.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
@@ -176,10 +177,7 @@ std::string format_stitch_model(const StitchModel& m) {
 StitchLibrary StitchLibrary::load(const std::filesystem::path& folder) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec)) throw Error(folder.string(), "", "the stitch library folder does not exist");
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder))
-    if (entry.path().extension() == ".stitch") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const auto files = files_with_extension(folder, ".stitch");
   StitchLibrary lib;
   for (const auto& f : files) {
     std::ifstream in(f, std::ios::binary);

@@ -1,5 +1,3 @@
-#include <Eigen/Geometry>
-
 #include "woven/exemplar.hpp"
 
 #include <algorithm>
@@ -8,6 +6,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+
+#include <Eigen/Geometry>
 
 #include "common/error.hpp"
 #include "relax/yarn_io.hpp"

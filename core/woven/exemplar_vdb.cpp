@@ -7,6 +7,7 @@
 
 #include "common/contained.hpp"
 #include "common/error.hpp"
+#include "common/input_file.hpp"
 #include "woven/exemplar.hpp"
 
 namespace skein::woven {
@@ -42,7 +43,7 @@ std::vector<T> take(const std::string& in, size_t& at) {
   std::memcpy(&count, in.data() + at, sizeof count);
   at += sizeof count;
   std::vector<T> v(count);
-  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  std::memcpy(static_cast<void*>(v.data()), in.data() + at, count * sizeof(T));
   at += count * sizeof(T);
   return v;
 }
@@ -214,10 +215,7 @@ Exemplar read_exemplar(const std::filesystem::path& path) {
 std::vector<Exemplar> read_exemplars(const std::filesystem::path& folder) {
   std::error_code error;
   if (!std::filesystem::is_directory(folder, error)) throw Error(folder.string(), "", "is not a folder of exemplars");
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder))
-    if (entry.path().extension() == ".vdb") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const auto files = files_with_extension(folder, ".vdb");
   if (files.empty()) throw Error(folder.string(), "", "holds no .vdb exemplars (make them with skein weave-exemplar)");
   std::vector<Exemplar> out;
   for (const auto& f : files) out.push_back(read_exemplar(f));

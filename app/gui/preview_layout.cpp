@@ -1,0 +1,28 @@
+#include "preview_layout.hpp"
+
+#include <QDialog>
+#include <QLabel>
+#include <QScrollArea>
+#include <QVBoxLayout>
+
+namespace skein::gui {
+
+PreviewWidgets lay_out_preview(QDialog* dialog, QLayout* controls, const QString& prompt) {
+  PreviewWidgets w;
+  w.picture = new QLabel(dialog);
+  w.picture->setObjectName("picture");
+  w.picture->setAlignment(Qt::AlignCenter);
+  auto* scroll = new QScrollArea(dialog);
+  scroll->setWidget(w.picture);
+  scroll->setWidgetResizable(true);
+  w.summary = new QLabel(prompt, dialog);
+  w.summary->setObjectName("summary");
+  w.summary->setWordWrap(true);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addLayout(controls);
+  layout->addWidget(scroll, 1);
+  layout->addWidget(w.summary);
+  return w;
+}
+
+}  // namespace skein::gui
