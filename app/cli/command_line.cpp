@@ -418,10 +418,12 @@ int run_command_line(int argc, char** argv) {
   wex->add_option("--tension", wx.options.tension, "the loom's tension: rest lengths are the emitted lengths times 1 - tension")
       ->capture_default_str()->check(CLI::Range(0.0, 0.19));
   wex->add_option("--voxels", wx.options.voxels_per_crossing, "voxels per crossing along x and y")->capture_default_str()->check(CLI::Range(4, 256));
-  wex->add_option("--jitter", wx.options.jitter, "random displacement of the emitted yarn, and spread of the yarns' radii, as a share of the spacing")
+  wex->add_option("--jitter", wx.options.jitter, "random displacement of the emitted yarn along each axis (a share of the spacing) and spread of the yarns' radii (a share of the radius)")
       ->capture_default_str()->check(CLI::Range(0.0, 0.19));
   wex->add_option("--plies", wx.options.plies, "plies twisted into each yarn")->capture_default_str()->check(CLI::Range(1, 8));
   wex->add_option("--twist", wx.options.twist, "length of one ply turn [mm] (default: 8 radii)")->check(CLI::Range(0.01, 1000.0));
+  wex->add_option("--migration", wx.options.migration, "how far fibres migrate across a ply over one ply turn, a share of its radius")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   wex->add_option("--seed", wx.options.seed, "random seed of the jitter and the fibres")->capture_default_str();
   wex->add_option("--max-steps", wx.options.max_steps, "relaxation steps at most")->capture_default_str()->check(CLI::Range(0L, 1000000L));
 
@@ -434,7 +436,7 @@ int run_command_line(int argc, char** argv) {
   wvol->add_option("--exemplars", wv.exemplars, "folder of exemplars from weave-exemplar (default: the bundled set, made on the fly)");
   wvol->add_option("--size", wv.size, "WxH crossings (default: the repeat tiled to about 48 x 48)");
   wvol->add_option("-o,--output", wv.output, "a region of the synthesized volume as OpenVDB (grids density, orientation, yarn)");
-  wvol->add_option("--region", wv.region, "X,Y,W,H: the crossings -o writes (default: all up to 64 x 64, else the centre 32 x 32)");
+  wvol->add_option("--region", wv.region, "X,Y,W,H: the crossings -o writes (default: all up to 16 x 16, else the centre 16 x 16; at most 64 M voxels)");
   wvol->add_option("--png", wv.png, "rendering: volumetric path tracing with the microflake phase function");
   wvol->add_option("--report", wv.report, "report (JSON; - for stdout)");
   wvol->add_option("--assignment", wv.assignment, "text: each crossing's exemplar block");

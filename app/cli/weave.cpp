@@ -1,8 +1,10 @@
 #include "weave.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
@@ -91,8 +93,11 @@ json compare_with_truth(const WeaveVolumeArgs& args, const std::vector<woven::Ex
   o.seed = 102;
   const auto other = woven::make_exemplar(pattern, o);
   const auto synthesized = woven::volume_region(volume, 0, 0, n, n);
-  // The ceiling: a weave other than the design's, from the same exemplars.
-  const auto wrong_weave = woven::tiled(weaves[0] == woven::tiled(woven::from_pattern(pattern), weaves[0].warps, weaves[0].wefts) ? weaves[1] : weaves[0], n, n);
+  // The ceiling: an exemplar's weave other than the design's, synthesized from the same exemplars.
+  const auto design = woven::from_pattern(pattern);
+  const auto another = std::find_if(weaves.begin(), weaves.end(), [&](const woven::Weave& w) { return !(w == woven::tiled(design, w.warps, w.wefts)); });
+  if (another == weaves.end()) throw Error("", "--compare-truth", "needs an exemplar of another weave than the design's (the ceiling it measures against)");
+  const auto wrong_weave = woven::tiled(*another, n, n);
   const auto wrong_volume = woven::make_volume(exemplars, wrong_weave, woven::synthesize(wrong_weave, weaves, args.synthesis), args.edge_rank);
   const auto wrong = woven::volume_region(wrong_volume, 0, 0, n, n);
   json j = {{"crossings", n},
@@ -148,6 +153,10 @@ json weave_exemplar(const WeaveExemplarArgs& args) {
   if (!std::filesystem::is_directory(args.output, error)) throw Error(args.output, "", "is not a folder (make it first)");
   if (!args.report.empty() && args.report != "-") check_writable(args.report);
   json report = {{"exemplars", json::array()}};
+  std::set<std::string> stems;
+  for (const auto& file : args.patterns)
+    if (!stems.insert(std::filesystem::path(file).stem().string()).second)
+      throw Error(file, "", "has the same name as another pattern given: both would be written to " + std::filesystem::path(file).stem().string() + ".vdb");
   for (const auto& file : args.patterns) {
     const auto pattern = mesh::read_pattern(file);
     if (pattern.format != mesh::PatternFormat::Woven) throw Error(file, "", "is a knitting pattern; exemplars are woven (.weave or .wif)");
@@ -178,9 +187,9 @@ json weave_volume(const WeaveVolumeArgs& args) {
     const auto image = render::read_png(args.picture);
     int colours = 0;
     const auto labels = picture_labels(image, colours);
-    if (colours > static_cast<int>(args.weaves.size()))
+    if (colours != static_cast<int>(args.weaves.size()))
       throw Error(args.picture, "", "has " + std::to_string(colours) + " colours and --weaves names " + std::to_string(args.weaves.size()) +
-                                        " weaves: posterize it, or name one weave per colour");
+                                        " weaves: name one weave per colour (posterize the picture first)");
     std::vector<woven::Weave> elementary;
     std::vector<int> map;
     for (int c = 0; c < colours; ++c) elementary.push_back(read_weave(args.weaves[c])), map.push_back(c);
@@ -256,9 +265,14 @@ json weave_volume(const WeaveVolumeArgs& args) {
     if (!args.region.empty()) {
       char tail = 0;
       if (std::sscanf(args.region.c_str(), "%d,%d,%d,%d%c", &x, &y, &w, &h, &tail) != 4) throw Error("", "--region", "expected X,Y,W,H crossings, found \"" + args.region + "\"");
-    } else if (w > 64 || h > 64) {
-      x = std::max(0, w / 2 - 16), y = std::max(0, h / 2 - 16), w = std::min(w, 32), h = std::min(h, 32);
+    } else if (w > 16 || h > 16) {
+      x = std::max(0, w / 2 - 8), y = std::max(0, h / 2 - 8), w = std::min(w, 16), h = std::min(h, 16);
     }
+    // What skein reads back (read_exemplar's limit), and what is made densely here.
+    const double voxels = static_cast<double>(w) * h * volume.block_x * volume.block_y * std::ceil((volume.z_high - volume.z_low) / volume.voxel);
+    if (voxels > 64.0 * 1024 * 1024)
+      throw Error("", "--region", "of " + std::to_string(w) + " x " + std::to_string(h) + " crossings is " + std::to_string(std::lround(voxels / 1e6)) +
+                                      " M voxels; at most 64 M (about 28 x 28 crossings of 24 x 24 voxels)");
     const auto region = woven::volume_region(volume, x, y, w, h);
     woven::write_exemplar(region, args.output);
     report["output"] = {{"path", args.output}, {"region", {x, y, w, h}}, {"voxels", {region.grid.nx, region.grid.ny, region.grid.nz}}};

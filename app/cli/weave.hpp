@@ -14,7 +14,7 @@ namespace skein::cli {
 struct WeaveExemplarArgs {
   std::vector<std::string> patterns;  ///< woven patterns (.weave or .wif)
   std::string output;                 ///< folder for the .vdb files
-  std::string report, png;            ///< a JSON report; a picture of each exemplar's rendering side by side
+  std::string report;                 ///< a JSON report
   woven::ExemplarOptions options;
 };
 nlohmann::json weave_exemplar(const WeaveExemplarArgs& args);
@@ -26,7 +26,7 @@ struct WeaveVolumeArgs {
   std::string exemplars;              ///< folder of .vdb exemplars; empty: the bundled set, made on the fly
   std::string size;                   ///< WxH crossings; empty: the pattern's repeat tiled to about 48 x 48, or the picture's size
   std::string output;                 ///< a region of the synthesized volume as .vdb
-  std::string region;                 ///< X,Y,W,H crossings of it; empty: everything up to 64 x 64 crossings, else the centre 32 x 32
+  std::string region;                 ///< X,Y,W,H crossings of it; empty: everything up to 16 x 16 crossings, else the centre 16 x 16
   std::string png, report, assignment;
   std::string warp_colors = "#2a3a7a", weft_colors = "#d8cfb0";  ///< colours cycled over the warps and the wefts
   int edge_rank = 15;                 ///< 0: no edge fixing

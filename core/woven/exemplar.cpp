@@ -66,11 +66,12 @@ Centreline centreline(const std::vector<Eigen::Vector3d>& samples) {
 }
 
 /// The fibres of one yarn at a point given in its frame: density and fibre direction (procedural plies after
-/// Schröder 2015 and Zhao 2016: plies twisted around the centreline, each ply's fibres twisted the other way,
-/// a fibre density falling off across a ply, and sparse flyaways outside the plies).
+/// Schröder 2015 and Zhao 2016: plies twisted around the centreline, each ply's fibres twisted the other way and
+/// migrating in and out across the ply once per ply turn, a fibre density falling off across a ply, and sparse
+/// flyaways outside the plies).
 struct Fibres {
   int plies;
-  double radius, helix, ply_radius, twist, phase, flyaways;
+  double radius, helix, ply_radius, twist, phase, flyaways, migration;
   std::uint64_t seed;
 
   std::pair<float, Eigen::Vector3f> at(double s, double a, double b, const Eigen::Vector3d& t, const Eigen::Vector3d& n,
@@ -89,7 +90,11 @@ struct Fibres {
       // The ply's helix tangent, and the fibre's own twist around the ply's axis (the other hand).
       const Eigen::Vector3d around_yarn = -std::sin(phi) * n + std::cos(phi) * bn;
       const Eigen::Vector3d around_ply = delta > 1e-12 ? Eigen::Vector3d(-(db / delta) * n + (da / delta) * bn) : Eigen::Vector3d::Zero();
-      direction = (t + turn * helix * around_yarn - turn * delta * around_ply).normalized();
+      const Eigen::Vector3d across_ply = delta > 1e-12 ? Eigen::Vector3d((da / delta) * n + (db / delta) * bn) : Eigen::Vector3d::Zero();
+      // Migration: a fibre's distance from the ply's axis swings by `migration` of the ply's radius over a ply
+      // turn, its phase set by where around the ply it lies; d(distance)/ds tilts it across the ply.
+      const double swing = -0.5 * migration * ply_radius * turn * std::sin(turn * s + std::atan2(db, da));
+      direction = (t + turn * helix * around_yarn - turn * delta * around_ply + swing * across_ply).normalized();
     }
     const double r = std::hypot(a, b);
     if (best == 0 && r < 1.4 * radius && r > 0.9 * radius && voxel_noise(voxel, yarn, seed) < 0.25) {
@@ -141,7 +146,7 @@ Exemplar voxelize(const mesh::YarnCurves& yarn, const std::vector<int>& warp_cur
     const double radius = r * (1 + options.jitter * unit(random));
     const bool plied = options.plies > 1;
     fibres.push_back({options.plies, radius, plied ? 0.5 * radius : 0.0, plied ? 0.55 * radius : radius, twist,
-                      2 * std::numbers::pi * (0.5 + 0.5 * unit(random)), options.flyaways, options.seed});
+                      2 * std::numbers::pi * (0.5 + 0.5 * unit(random)), options.flyaways, options.migration, options.seed});
   }
   // §6.3: every voxel belongs to the yarn whose centreline is nearest.
   for (size_t id = 0; id < lines.size(); ++id) {
@@ -187,8 +192,8 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
   if (options.crossings < 2 || options.crossings > 64) throw Error("", "exemplar", "needs 2 to 64 crossings along a side");
   if (options.voxels_per_crossing < 4 || options.voxels_per_crossing > 256) throw Error("", "exemplar", "needs 4 to 256 voxels per crossing");
   if (!(options.radius > 0) || !(options.jitter >= 0 && options.jitter < 0.2) || options.plies < 1 || options.plies > 8 ||
-      !(options.tension >= 0 && options.tension < 0.2))
-    throw Error("", "exemplar", "needs a positive radius, a jitter and a tension below 0.2 and 1 to 8 plies");
+      !(options.tension >= 0 && options.tension < 0.2) || !(options.migration >= 0 && options.migration <= 1))
+    throw Error("", "exemplar", "needs a positive radius, a jitter and a tension below 0.2, 1 to 8 plies and a migration of 0 to 1");
   const double spacing = options.spacing > 0 ? options.spacing : 3 * options.radius;
   const int n = options.crossings + 2;
   mesh::Pattern field = pattern;

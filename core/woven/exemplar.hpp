@@ -46,7 +46,8 @@ struct ExemplarOptions {
   double spacing = 0;       ///< crossing spacing [mm]; 0: 3 r (a closer weave than `skein pattern`'s 4 r, as cloth is)
   int voxels_per_crossing = 24;  ///< block_x = block_y
   /// Non-periodic relaxation: every emitted control point moves by up to this share of the spacing in the
-  /// plane before the yarn's rest lengths are taken, and each yarn's voxelized radius varies by the same share,
+  /// plane (along each axis) before the yarn's rest lengths are taken, and each yarn's voxelized radius varies by
+  /// the same share of itself,
   /// so that no two crossings of the exemplar are alike and blocks copied side by side leave real seams.
   double jitter = 0.04;
   /// The loom's tension: every yarn's rest length is its emitted length times 1 - tension, so that the yarn,
@@ -55,6 +56,7 @@ struct ExemplarOptions {
   int plies = 3;            ///< plies per yarn, twisted around its centreline
   double twist = 0;         ///< one ply's turn along the yarn [mm]; 0: 8 r
   double flyaways = 0.02;   ///< density of the loose fibres around a yarn's surface, a share of the core's
+  double migration = 0.3;   ///< how far fibres migrate in and out across a ply over a ply turn, a share of its radius
   std::uint64_t seed = 1;
   long max_steps = 1500;    ///< relaxation steps (L-BFGS, force stop rule, the yarns' ends held)
 };

@@ -23,8 +23,8 @@ int neighbourhood(const Weave& w, int i, int j) {
   return key;
 }
 
-/// The blocks of every exemplar that are correct for the target's neighbourhood `key` and match the most
-/// neighbours (principles 1 and 2).
+/// The blocks of every exemplar that are correct for the target's crossing (weft i, warp j) and match the most
+/// of its neighbours (principles 1 and 2); `best` is that number.
 std::vector<Block> best_blocks(const Weave& target, int i, int j, const std::vector<Weave>& exemplars, int& best) {
   std::vector<Block> out;
   best = -1;

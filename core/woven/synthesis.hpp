@@ -37,7 +37,7 @@ struct SynthesisScore {
   long crossings = 0;
   long correct = 0;       ///< principle 1: the block has the target's yarn on top
   long matches = 0;       ///< principle 2: the target's neighbours the block's neighbours match (at most 4 per crossing)
-  long best_matches = 0;  ///< the most matches any assignment could reach (each crossing's best block)
+  long best_matches = 0;  ///< the most matches any correct assignment could reach (each crossing's best correct block)
   long consistent = 0;    ///< crossings whose every neighbour matches
   long continuity = 0;    ///< principle 3: pairs of neighbouring crossings that copy neighbouring blocks of one exemplar
 };

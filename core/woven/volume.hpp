@@ -33,8 +33,8 @@ private:
   Eigen::MatrixXf m_ct, m_cl;                  ///< r x MN coefficients
 };
 
-/// Per exemplar, per voxel column, the height of the top surface (the highest voxel with fibres) [mm]; NaN over
-/// gaps. What edge fixing matches across block edges.
+/// Per exemplar, per voxel column, the height of the top surface (the highest voxel of density above 0.05, so
+/// that flyaways do not count) [mm]; NaN over gaps. What edge fixing matches across block edges.
 std::vector<Eigen::MatrixXf> top_surfaces(const std::vector<Exemplar>& exemplars);
 
 /// The mean step of the top surface across the blocks' shared edges [mm] (where both sides have fibres):

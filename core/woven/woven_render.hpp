@@ -18,7 +18,8 @@ struct WovenRenderOptions {
   int bounces = 8;                ///< scattering events per path at most
   double extinction = 60;         ///< σ_t per unit fibre density [1/mm] (a yarn is optically thick)
   double exponent = 20;           ///< the microflakes' fibre exponent p
-  std::vector<Eigen::Vector3f> colors{{0.15f, 0.2f, 0.55f}, {0.85f, 0.8f, 0.65f}};  ///< albedo per colour index (linear)
+  /// Albedo per colour index (linear): by default the CLI's default warp #2a3a7a and weft #d8cfb0, linearized.
+  std::vector<Eigen::Vector3f> colors{{0.0189f, 0.0385f, 0.1975f}, {0.6941f, 0.6320f, 0.4423f}};
   Eigen::Vector2d centre{-1, -1};  ///< the fabric point the camera looks at [mm]; negative: the fabric's centre
   double field = 0;               ///< the image's width on the fabric [mm]; 0: the whole fabric
   double tilt = 35;               ///< the view's angle from straight down [degrees]
