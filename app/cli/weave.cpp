@@ -1,7 +1,6 @@
 #include "weave.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -20,10 +19,6 @@
 namespace skein::cli {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// "#rrggbb,#rrggbb,...": linear albedos.
 std::vector<Eigen::Vector3f> parse_colors(const std::string& text, const std::string& option) {
   std::vector<Eigen::Vector3f> out;
@@ -33,8 +28,7 @@ std::vector<Eigen::Vector3f> parse_colors(const std::string& text, const std::st
     char tail = 0;
     if (item.size() != 7 || std::sscanf(item.c_str(), "#%2x%2x%2x%c", &r, &g, &b, &tail) != 3)
       throw Error("", option, "expected colours as #rrggbb separated by commas, found \"" + item + "\"");
-    const auto linear = [](unsigned v) { return static_cast<float>(std::pow(v / 255.0, 2.2)); };
-    out.emplace_back(linear(r), linear(g), linear(b));
+    out.emplace_back(render::linear_of_byte(r), render::linear_of_byte(g), render::linear_of_byte(b));
   }
   if (out.empty()) throw Error("", option, "needs at least one colour");
   return out;
@@ -86,7 +80,7 @@ json compare_with_truth(const WeaveVolumeArgs& args, const std::vector<woven::Ex
   o.radius = first.radius;
   o.spacing = first.spacing;
   o.voxels_per_crossing = first.block_x;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const auto pattern = mesh::read_pattern(args.pattern);
   o.seed = 101;
   const auto truth = woven::make_exemplar(pattern, o);
@@ -104,7 +98,7 @@ json compare_with_truth(const WeaveVolumeArgs& args, const std::vector<woven::Ex
             {"synthesized", difference_json(woven::compare_grids(synthesized.grid, truth.grid, n))},
             {"relaxed_again", difference_json(woven::compare_grids(other.grid, truth.grid, n))},
             {"other_weave", difference_json(woven::compare_grids(wrong.grid, truth.grid, n))},
-            {"seconds", seconds_since(start)}};
+            {"seconds", start.seconds()}};
   spdlog::info("against the design relaxed directly ({} x {} crossings): top yarn agrees over {:.0f} % of the cloth (relaxed again {:.0f} %, another weave {:.0f} %), "
                "density error {:.3f} ({:.3f}, {:.3f}), fibre angle {:.1f} deg ({:.1f}, {:.1f}), occupancy {:.2f} ({:.2f}, {:.2f})",
                n, n, 100 * j["synthesized"]["top_agreement"].get<double>(), 100 * j["relaxed_again"]["top_agreement"].get<double>(),
@@ -203,17 +197,17 @@ json weave_volume(const WeaveVolumeArgs& args) {
   }
   const auto warp_palette = parse_colors(args.warp_colors, "--warp-colors"), weft_palette = parse_colors(args.weft_colors, "--weft-colors");
   // The exemplars (§4): a folder, or the bundled set.
-  const auto exemplar_start = std::chrono::steady_clock::now();
+  const Stopwatch exemplar_start;
   const auto exemplars = args.exemplars.empty() ? bundled_exemplars({}) : woven::read_exemplars(args.exemplars);
-  const double exemplar_seconds = seconds_since(exemplar_start);
+  const double exemplar_seconds = exemplar_start.seconds();
   std::vector<woven::Weave> weaves;
   json exemplar_names = json::array();
   for (const auto& e : exemplars) weaves.push_back(e.weave), exemplar_names.push_back(e.name);
   spdlog::info("{} x {} crossings; {} exemplars ({:.1f} s)", weave.warps, weave.wefts, exemplars.size(), exemplar_seconds);
   // Synthesis (§5.3, §5.4) and edge fixing (§5.5).
-  const auto synthesis_start = std::chrono::steady_clock::now();
+  const Stopwatch synthesis_start;
   const auto assignment = woven::synthesize(weave, weaves, args.synthesis);
-  const double synthesis_seconds = seconds_since(synthesis_start);
+  const double synthesis_seconds = synthesis_start.seconds();
   const auto score = woven::score(weave, weaves, assignment);
   std::vector<int> warp_color(weave.warps * static_cast<size_t>(weave.wefts)), weft_color(warp_color.size());
   const int warps_n = static_cast<int>(warp_palette.size());
@@ -222,9 +216,9 @@ json weave_volume(const WeaveVolumeArgs& args) {
       warp_color[static_cast<size_t>(i) * weave.warps + j] = j % warps_n;
       weft_color[static_cast<size_t>(i) * weave.warps + j] = warps_n + i % static_cast<int>(weft_palette.size());
     }
-  const auto fix_start = std::chrono::steady_clock::now();
+  const Stopwatch fix_start;
   const auto volume = woven::make_volume(exemplars, weave, assignment, args.edge_rank, warp_color, weft_color);
-  const double fix_seconds = seconds_since(fix_start);
+  const double fix_seconds = fix_start.seconds();
   const long crossings = static_cast<long>(weave.warps) * weave.wefts;
   json report = {{"design", args.picture.empty() ? args.pattern : args.picture},
                  {"crossings", {weave.warps, weave.wefts}},

@@ -101,11 +101,17 @@ void draw_panel(const std::vector<Polygon>& polygons, const Frame& fr, double sc
         for (int dx = 0; dx < ss; ++dx) sum += color[static_cast<size_t>(y * ss + dy) * n + x * ss + dx];
       sum /= ss * ss;
       const size_t o = (static_cast<size_t>(y) * out.width + x0 + x) * 3;
-      for (int c = 0; c < 3; ++c) out.rgb[o + c] = static_cast<std::uint8_t>(std::clamp(std::lround(std::pow(sum[c], 1 / 2.2f) * 255.0f), 0L, 255L));
+      for (int c = 0; c < 3; ++c) out.rgb[o + c] = display_byte(sum[c]);
     }
 }
 
 }  // namespace
+
+std::uint8_t display_byte(float linear) {
+  return static_cast<std::uint8_t>(std::clamp(std::lround(std::pow(std::max(linear, 0.0f), 1 / 2.2f) * 255.0f), 0L, 255L));
+}
+
+float linear_of_byte(unsigned byte) { return std::pow(static_cast<float>(byte) / 255.0f, 2.2f); }
 
 Image draw(const std::vector<Polygon>& polygons, const View& view) {
   const int panels = static_cast<int>(view.directions.size());

@@ -28,6 +28,10 @@ struct View {
   bool outlines = true;     ///< dark polygon edges where polygons are large enough on screen to show them
 };
 
+/// A linear intensity (0 to 1; clamped) as a display byte, gamma 2.2, and a display byte back to linear.
+std::uint8_t display_byte(float linear);
+float linear_of_byte(unsigned byte);
+
 /// Software rasterizer: z-buffered, head-light Lambert shading, 2x supersampled. No GPU or display needed.
 Image draw(const std::vector<Polygon>& polygons, const View& view);
 

@@ -126,17 +126,24 @@ EdgeFix::EdgeFix(const std::vector<Exemplar>& ex, const Assignment& as, int rank
   m_rank = std::max(rt, rl);
   // The 2r Laplace solutions: basis column t on the top edge (or the left edge), every other edge 0.
   const Laplace laplace(m_bx, m_by);
-  m_top.assign(m_rank, Eigen::MatrixXf::Zero(m_bx, m_by));
-  m_left.assign(m_rank, Eigen::MatrixXf::Zero(m_bx, m_by));
+  const int columns = m_bx * m_by;
+  m_top = m_left = m_top_mirrored = m_left_mirrored = Eigen::MatrixXf::Zero(m_rank, columns);
+  const auto store = [&](const Eigen::MatrixXf& field, int t, Eigen::MatrixXf& plain, Eigen::MatrixXf& mirrored, bool vertically) {
+    for (int b = 0; b < m_by; ++b)
+      for (int a = 0; a < m_bx; ++a) {
+        plain(t, a + b * m_bx) = field(a, b);
+        mirrored(t, a + b * m_bx) = vertically ? field(a, m_by - 1 - b) : field(m_bx - 1 - a, b);
+      }
+  };
   for (int t = 0; t < rt; ++t) {
     Eigen::MatrixXf ring = Eigen::MatrixXf::Zero(m_bx, m_by);
     for (int a = 0; a < m_bx; ++a) ring(a, m_by - 1) = static_cast<float>(bt(a, t));
-    m_top[t] = laplace.solve(ring);
+    store(laplace.solve(ring), t, m_top, m_top_mirrored, true);
   }
   for (int t = 0; t < rl; ++t) {
     Eigen::MatrixXf ring = Eigen::MatrixXf::Zero(m_bx, m_by);
     for (int b = 1; b < m_by - 1; ++b) ring(0, b) = static_cast<float>(bl(b - 1, t));
-    m_left[t] = laplace.solve(ring);
+    store(laplace.solve(ring), t, m_left, m_left_mirrored, false);
   }
   // Second pass: each block's coefficients C = B^T t.
   m_ct = Eigen::MatrixXf::Zero(m_rank, blocks);
@@ -154,14 +161,12 @@ EdgeFix::EdgeFix(const std::vector<Exemplar>& ex, const Assignment& as, int rank
 double EdgeFix::shift(int i, int j, int a, int b) const {
   if (m_rank == 0) return 0;
   const long c = static_cast<long>(i) * m_warps + j;
-  double s = 0;
-  for (int t = 0; t < m_rank; ++t) {
-    s += m_ct(t, c) * m_top[t](a, b) + m_cl(t, c) * m_left[t](a, b);
-    // The lower neighbour's top edge is this block's bottom edge, and the right neighbour's left edge this
-    // block's right edge, each with the opposite sign (the two sides meet halfway).
-    if (i > 0) s -= m_ct(t, c - m_warps) * m_top[t](a, m_by - 1 - b);
-    if (j + 1 < m_warps) s -= m_cl(t, c + 1) * m_left[t](m_bx - 1 - a, b);
-  }
+  const int k = a + b * m_bx;
+  double s = m_ct.col(c).dot(m_top.col(k)) + m_cl.col(c).dot(m_left.col(k));
+  // The lower neighbour's top edge is this block's bottom edge, and the right neighbour's left edge this block's
+  // right edge, each with the opposite sign (the two sides meet halfway).
+  if (i > 0) s -= m_ct.col(c - m_warps).dot(m_top_mirrored.col(k));
+  if (j + 1 < m_warps) s -= m_cl.col(c + 1).dot(m_left_mirrored.col(k));
   return s;
 }
 

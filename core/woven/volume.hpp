@@ -29,7 +29,10 @@ public:
 private:
   int m_bx = 0, m_by = 0, m_rank = 0, m_warps = 0, m_wefts = 0;
   double m_kept = 1;
-  std::vector<Eigen::MatrixXf> m_top, m_left;  ///< per rank: the Laplace solution (bx x by) of basis column t
+  /// The Laplace solutions of the basis columns, r x (bx by), column a + b bx holding voxel column (a, b) of each;
+  /// and the same mirrored (top: b -> by - 1 - b, left: a -> bx - 1 - a) for the neighbours' edges. Laid out so
+  /// that a lookup is four dot products of r contiguous floats (the renderer asks for every step it takes).
+  Eigen::MatrixXf m_top, m_left, m_top_mirrored, m_left_mirrored;
   Eigen::MatrixXf m_ct, m_cl;                  ///< r x MN coefficients
 };
 

@@ -130,10 +130,7 @@ render::Image render_woven(const WovenVolume& volume, const WovenRenderOptions& 
   });
   render::Image image(o.width, o.height);
   for (size_t k = 0; k < light.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      const double v = std::pow(std::clamp<double>(light[k][c], 0.0, 1.0), 1 / 2.2);
-      image.rgb[3 * k + c] = static_cast<std::uint8_t>(std::lround(255 * v));
-    }
+    for (int c = 0; c < 3; ++c) image.rgb[3 * k + c] = render::display_byte(light[k][c]);
   if (report) {
     report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report->paths = static_cast<long>(o.width) * o.height * o.samples;
