@@ -85,6 +85,12 @@ int run_command_line(int argc, char** argv) {
   auto* start_edge_opt = stitch->add_option("--start-edge", start_edge, "with --auto-label or --field: the border edge to start from (default: the lowest)");
   stitch->add_option("--start-point", start_point, "with --field: knit in the round outwards from the surface point nearest X,Y,Z")
       ->expected(3)->delimiter(',')->needs(field_opt)->excludes(start_edge_opt);
+  int end_edge = -1;
+  std::vector<double> end_point;
+  auto* end_edge_opt = stitch->add_option("--end-edge", end_edge, "with --field: the border edge where knitting ends; the rows turn to lie along its run (default: no end)")
+                           ->needs(field_opt);
+  stitch->add_option("--end-point", end_point, "with --field: knitting ends at the surface point nearest X,Y,Z (a toe, a crown); the rows close round it")
+      ->expected(3)->delimiter(',')->needs(field_opt)->excludes(end_edge_opt);
   stitch->add_option("--stitch-size", size.width, "stitch width along the course [mm]")->capture_default_str();
   stitch->add_option("--stitch-height", size.height, "stitch height along the wale [mm] (default: the width × 5/6)");
   stitch->add_option("-o,--output", stitch_out, "project to write (.skein)")->required();
@@ -548,7 +554,10 @@ int run_command_line(int argc, char** argv) {
         mesh::KnitStart knit_start;
         knit_start.border_edge = start_edge;  // -1: the lowest
         if (!start_point.empty()) knit_start.point = Eigen::Vector3d(start_point[0], start_point[1], start_point[2]);
-        auto traced = mesh::trace_stitch_mesh(m, knit_start, size);
+        std::optional<mesh::KnitStart> knit_end;
+        if (end_edge >= 0) knit_end = mesh::KnitStart{end_edge, {}};
+        if (!end_point.empty()) knit_end = mesh::KnitStart{-1, Eigen::Vector3d(end_point[0], end_point[1], end_point[2])};
+        auto traced = mesh::trace_stitch_mesh(m, knit_start, size, knit_end);
         spdlog::info("traced {} rows on {} isolines of the knitting distance (farthest {:.1f} mm): {} faces, {} cast-on and {} closed-off rows ({:.3f} s)",
                      traced.labels.rows, traced.levels, traced.field_max, traced.mesh.num_faces(), traced.row_starts, traced.row_ends, t.seconds());
         project.input = std::move(traced.mesh);

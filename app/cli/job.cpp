@@ -184,7 +184,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     job.pictures = k.flag("pictures", true);
     return job;
   }
-  k.only({"name", "mesh", "labels", "start", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures",
+  k.only({"name", "mesh", "labels", "start", "end", "stitch_size", "gauge", "max_stitches", "edits", "relax_mesh", "yarn", "relax_yarn", "output", "pictures",
           "smocking", "weave"});
   if (!k.has("mesh"))
     k.fail("mesh", "is missing: the garment mesh to knit (OBJ, PLY, glTF, ... or a .skein project), \"smocking\" for a smocking job or \"weave\" for a weaving job");
@@ -192,21 +192,27 @@ Job parse_job(const std::string& text, const fs::path& file) {
   const std::string labels = k.text("labels", "auto");
   if (labels == "field") job.field = true;
   else if (labels != "auto") job.labels = k.file("labels");
-  if (k.has("start")) {
-    // Where the rows start (issue 25): a border edge for "auto" and "field", a surface point for "field".
-    const Keys start(k.at("start"), "start", file);
-    start.only({"edge", "point"});
-    if (!job.labels.empty()) k.fail("start", "is for \"labels\": \"auto\" or \"field\"; a labels file says where its rows start");
-    if (start.has("edge") == start.has("point")) start.fail("start", "give \"edge\" (a border edge) or \"point\" ([x, y, z] on the surface), one of them");
-    job.start.border_edge = static_cast<int>(start.integer("edge", -1, 0, 1 << 30));
-    if (start.has("point")) {
-      if (!job.field) start.fail(start.name("point"), "is for \"labels\": \"field\" (knitting in the round from a point)");
-      const json& p = start.at("point");
+  // Where the rows start and end (issue 25): a border edge for "auto" and "field" (an end for "field" only), a
+  // surface point for "field".
+  const auto knit_place = [&](const std::string& key) {
+    const Keys at(k.at(key), key, file);
+    at.only({"edge", "point"});
+    if (!job.labels.empty()) k.fail(key, "is for \"labels\": \"auto\" or \"field\"; a labels file says where its rows " + key);
+    if (key == "end" && !job.field) k.fail(key, "is for \"labels\": \"field\" (rows traced from the start to the end)");
+    if (at.has("edge") == at.has("point")) at.fail(key, "give \"edge\" (a border edge) or \"point\" ([x, y, z] on the surface), one of them");
+    mesh::KnitStart place;
+    place.border_edge = static_cast<int>(at.integer("edge", -1, 0, 1 << 30));
+    if (at.has("point")) {
+      if (!job.field) at.fail(at.name("point"), "is for \"labels\": \"field\" (knitting in the round from a point)");
+      const json& p = at.at("point");
       if (!p.is_array() || p.size() != 3 || !std::all_of(p.begin(), p.end(), [](const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }))
-        start.fail(start.name("point"), "expected [x, y, z] in the mesh's units, found " + p.dump());
-      job.start.point = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+        at.fail(at.name("point"), "expected [x, y, z] in the mesh's units, found " + p.dump());
+      place.point = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
     }
-  }
+    return place;
+  };
+  if (k.has("start")) job.start = knit_place("start");
+  if (k.has("end")) job.end = knit_place("end");
   if (k.has("stitch_size")) {
     const Keys size(k.at("stitch_size"), "stitch_size", file);
     size.only({"width", "height"});
@@ -376,7 +382,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       project.input = load_input(job.mesh);
       if (job.field) {  // the traced rows become the project's input mesh, one stitch a face
         mesh::check_stitch_count(*project.input, job.stitch_size, job.max_stitches);  // before tracing, which grows with it
-        auto traced = mesh::trace_stitch_mesh(*project.input, job.start, job.stitch_size);  // by default from the lowest border
+        auto traced = mesh::trace_stitch_mesh(*project.input, job.start, job.stitch_size, job.end);  // by default from the lowest border
         project.input = std::move(traced.mesh);
         project.labels = std::move(traced.labels);
         project.values = std::move(traced.values);

@@ -45,6 +45,7 @@ struct Job {
   std::filesystem::path labels;  ///< a .skein with labels for the mesh; empty: auto-label (or the field)
   bool field = false;            ///< "labels": "field": rows traced from the knitting field (issue 25)
   mesh::KnitStart start;         ///< "start": the border edge (auto and field) or surface point (field) the rows start from
+  std::optional<mesh::KnitStart> end;  ///< "end": the border edge or surface point the rows end at (field)
   mesh::StitchSize stitch_size;
   double max_stitches = mesh::kDefaultMaxStitches;  ///< refused past this estimate (check_stitch_count)
   std::vector<JobEdit> edits;

@@ -70,8 +70,8 @@ constexpr double kFieldMaxTriangles = 4e6;
 /// Builds the field surface and the geodesic distance from `sources` (CGAL's heat method, directly on the
 /// isotropically remeshed triangles, whose good shapes the cotangent weights want). `sources` picks the
 /// refined surface's source vertices from their positions and whether they lie on the border.
-FieldSurface knitting_distance(const InputMesh& surface, double max_edge,
-                               const std::function<std::vector<int>(const std::vector<Eigen::Vector3d>&, const std::vector<char>&)>& sources) {
+using SourcePicker = std::function<std::vector<int>(const std::vector<Eigen::Vector3d>&, const std::vector<char>&)>;
+FieldSurface knitting_distance(const InputMesh& surface, double max_edge, const SourcePicker& sources, const SourcePicker* end_sources) {
   Surface tm;
   std::vector<SurfaceVertex> vertex;
   vertex.reserve(surface.num_vertices());
@@ -112,6 +112,30 @@ FieldSurface knitting_distance(const InputMesh& surface, double max_edge,
   heat.estimate_geodesic_distances(distance);
   for (auto v : tm.vertices()) field.t.push_back(distance[v]);
   for (int v : from) field.t[static_cast<std::size_t>(v)] = 0;  // the heat method's estimate leaves them near, not at, zero
+  if (end_sources) {
+    // Where knitting ends (AutoKnit's and Stitch Meshing's second constraint): with d_s and d_e the distances
+    // from the start and from the end, the field d_s / (d_s + d_e) is 0 on the start and 1 on the end, so the
+    // rows turn from the start's shape to the end's and the last row lies along it. Scaled by the mean of
+    // d_s + d_e (the start-to-end length), so that it is a distance again before the gradient scaling below.
+    const std::vector<int> to = (*end_sources)(field.points, on_border);
+    if (to.empty()) throw Error(surface.source(), "", "the knitting end lies on no point of the remeshed surface");
+    for (int v : to)
+      if (std::find(from.begin(), from.end(), v) != from.end())
+        throw Error(surface.source(), "", "the knitting end touches the start: give an end away from it");
+    heat.clear_sources();
+    for (int v : to) heat.add_source(SurfaceVertex(static_cast<Surface::size_type>(v)));
+    heat.estimate_geodesic_distances(distance);
+    std::vector<double> to_end;
+    for (auto v : tm.vertices()) to_end.push_back(distance[v]);
+    for (int v : to) to_end[static_cast<std::size_t>(v)] = 0;
+    double span = 0;
+    for (std::size_t v = 0; v < to_end.size(); ++v) span += field.t[v] + to_end[v];
+    span /= static_cast<double>(to_end.size());
+    for (std::size_t v = 0; v < to_end.size(); ++v) {
+      const double sum = field.t[v] + to_end[v];
+      field.t[v] = sum > 0 ? span * field.t[v] / sum : 0;
+    }
+  }
   // A distance has a gradient of length 1 (the eikonal equation). The heat method's smoothing shortens it,
   // most near the start (a 100 mm square's far border came out at 97.3 mm): the field is divided by its
   // area-weighted mean gradient length, and each triangle's own length is kept for spacing the rows.
@@ -324,49 +348,45 @@ std::vector<int> field_start_run(const InputMesh& surface, int border_edge) {
   return run;
 }
 
-TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, const StitchSize& size) {
-  size.validate();
+/// The input's vertices a start or end names (the run of border edges, or the vertex nearest the point), and a
+/// picker of the refined field surface's vertices that lie on them. `what` is "start" or "end", for errors.
+struct FieldEnds {
+  std::vector<int> vertices;
+  SourcePicker picker;
+};
+FieldEnds field_ends(const InputMesh& surface, const KnitStart& at, const std::string& what) {
   const std::string& name = surface.source();
-  // Sources: the points of the start run, or the point nearest the start.
-  std::vector<int> start_vertices;
+  FieldEnds ends;
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> run_segments;
-  if (start.point) {
+  if (at.point) {
     int best = 0;
     for (int v = 1; v < surface.num_vertices(); ++v)
-      if ((surface.point(v) - *start.point).squaredNorm() < (surface.point(best) - *start.point).squaredNorm()) best = v;
-    start_vertices.push_back(best);
+      if ((surface.point(v) - *at.point).squaredNorm() < (surface.point(best) - *at.point).squaredNorm()) best = v;
+    ends.vertices.push_back(best);
   } else {
-    int border_edge = start.border_edge;
+    int border_edge = at.border_edge;
     if (border_edge < 0) {  // the lowest border edge; a closed surface has none
       bool has_border = false;
       for (int e = 0; e < surface.num_edges() && !has_border; ++e) has_border = surface.is_border(e);
-      if (!has_border) throw Error(name, "", "a closed surface has no border to start from: give --start-point X,Y,Z");
+      if (!has_border) throw Error(name, "", "a closed surface has no border to " + what + " from: give --" + what + "-point X,Y,Z");
       border_edge = default_start_edge(surface);
     }
+    if (what == "end" && (border_edge >= surface.num_edges() || !surface.is_border(border_edge)))
+      throw Error(name, "edge " + std::to_string(border_edge), "is not a border edge; knitting ends on a border or at a point (--end-point)");
     for (int e : field_start_run(surface, border_edge)) {
       const auto [a, b] = surface.edge_vertices(e);
-      start_vertices.push_back(a);
+      ends.vertices.push_back(a);
       run_segments.push_back({surface.point(a), surface.point(b)});
     }
   }
-  int piece_count = 0;
-  const std::vector<int> piece = pieces(surface, piece_count);
-  if (piece_count > 1) {
-    std::vector<char> reached(piece_count, 0);
-    for (int v : start_vertices) reached[piece[v]] = 1;
-    for (int v = 0; v < surface.num_vertices(); ++v)
-      if (!reached[piece[v]])
-        throw Error(name, "vertex " + std::to_string(v) + " " + where(surface.point(v)),
-                    "lies on a piece of the surface the knitting start does not reach (" + std::to_string(piece_count) +
-                        " pieces); trace each piece from its own start");
-  }
   const double tolerance = 1e-9 * surface.bounding_diagonal();
-  const auto sources = [&](const std::vector<Eigen::Vector3d>& points, const std::vector<char>& on_border) {
+  const std::optional<Eigen::Vector3d> point = at.point;
+  ends.picker = [point, run_segments, tolerance](const std::vector<Eigen::Vector3d>& points, const std::vector<char>& on_border) {
     std::vector<int> from;
-    if (start.point) {  // the remeshing moves inner points: the nearest of the refined surface's
+    if (point) {  // the remeshing moves inner points: the nearest of the refined surface's
       int best = 0;
       for (int v = 1; v < static_cast<int>(points.size()); ++v)
-        if ((points[static_cast<std::size_t>(v)] - *start.point).squaredNorm() < (points[static_cast<std::size_t>(best)] - *start.point).squaredNorm()) best = v;
+        if ((points[static_cast<std::size_t>(v)] - *point).squaredNorm() < (points[static_cast<std::size_t>(best)] - *point).squaredNorm()) best = v;
       return std::vector<int>{best};
     }
     for (int v = 0; v < static_cast<int>(points.size()); ++v) {
@@ -383,7 +403,27 @@ TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, c
     }
     return from;
   };
-  FieldSurface field = knitting_distance(surface, 0.5 * std::min(size.width, size.height), sources);
+  return ends;
+}
+
+TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, const StitchSize& size, const std::optional<KnitStart>& end) {
+  size.validate();
+  const std::string& name = surface.source();
+  const FieldEnds from = field_ends(surface, start, "start");
+  std::optional<FieldEnds> to;
+  if (end) to = field_ends(surface, *end, "end");
+  int piece_count = 0;
+  const std::vector<int> piece = pieces(surface, piece_count);
+  if (piece_count > 1) {
+    std::vector<char> reached(piece_count, 0);
+    for (int v : from.vertices) reached[piece[v]] = 1;
+    for (int v = 0; v < surface.num_vertices(); ++v)
+      if (!reached[piece[v]])
+        throw Error(name, "vertex " + std::to_string(v) + " " + where(surface.point(v)),
+                    "lies on a piece of the surface the knitting start does not reach (" + std::to_string(piece_count) +
+                        " pieces); trace each piece from its own start");
+  }
+  FieldSurface field = knitting_distance(surface, 0.5 * std::min(size.width, size.height), from.picker, to ? &to->picker : nullptr);
   for (std::size_t v = 0; v < field.t.size(); ++v)
     if (!std::isfinite(field.t[v])) throw Error(name, where(field.points[v]), "the heat method gave no knitting distance here");
   const double lowest = *std::min_element(field.t.begin(), field.t.end());

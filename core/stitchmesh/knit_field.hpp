@@ -17,7 +17,7 @@
 
 namespace skein::mesh {
 
-/// Where knitting starts. A border: the run of border edges through `border_edge` up to the corners where the
+/// Where knitting starts (or ends). A border: the run of border edges through `border_edge` up to the corners where the
 /// border turns by more than kFieldCornerDegrees (a tube's end: its whole loop). A point: the vertex nearest
 /// to it, knitting in the round outwards from a small ring around it (a hat's crown, a sphere's pole).
 struct KnitStart {
@@ -47,11 +47,13 @@ struct TracedRows {
 /// Border edges of `start`'s run, in order along the border (the surface to their left, seen from outside).
 std::vector<int> field_start_run(const InputMesh& surface, int border_edge);
 
-/// Traces a stitch mesh on `surface` from `start` at `size` (the mesh's units are millimetres). Rows that split
+/// Traces a stitch mesh on `surface` from `start` at `size` (the mesh's units are millimetres). With `end` (a
+/// border or a point, as a start is given), the field runs from 0 on the start to its largest on the end, so
+/// that the rows turn from the start's shape to the end's and the last row lies along the end. Rows that split
 /// or merge (a thumb, sleeves, a hole) are joined run by run (docs/stitch-a-garment.md). Throws skein::Error
 /// naming the mesh and the place for: a start that is not a border edge, a piece of the surface that the start
 /// does not reach, a field the heat method could not compute, rows that split and merge at once or meet
 /// unevenly, joins that would break a rule of meshes, and a surface too small for a row.
-TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, const StitchSize& size);
+TracedRows trace_stitch_mesh(const InputMesh& surface, const KnitStart& start, const StitchSize& size, const std::optional<KnitStart>& end = {});
 
 }  // namespace skein::mesh

@@ -918,6 +918,20 @@ TEST(Job, FieldRowsStartWhereTheJobSays) {
   refused(R"({"edge": 3, "point": [0, 0, 0]})", R"("field")", "key 'start': give \"edge\" (a border edge) or \"point\"");
   refused(R"({"point": [0, 0]})", R"("field")", "key 'start.point': expected [x, y, z] in the mesh's units, found [0,0]");
   refused(R"({"point": [0, 0, 0]})", R"("auto")", "key 'start.point': is for \"labels\": \"field\"");
+
+  // "end" as skein stitch --end-point: the rows close round the far border's middle.
+  ASSERT_EQ(run_skein("-q stitch " + mesh.string() + " --field --end-point 60,100,0 --stitch-size 12 --stitch-height 10 -o " + (dir / "e.skein").string()).status, 0);
+  const auto end_stats = nlohmann::json::parse(run_skein("stats " + (dir / "e.skein").string() + " --json").output);
+  const auto end_job = dir.write("end.json", R"({"mesh": ")" + mesh.string() + R"(", "labels": "field", "end": {"point": [60, 100, 0]},
+    "stitch_size": {"width": 12, "height": 10}, "relax_mesh": false, "relax_yarn": false, "pictures": false})");
+  const auto e = run_skein("-q run " + end_job.string() + " -o " + (dir / "end").string());
+  ASSERT_EQ(e.status, 0) << e.output;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "end" / "report.json")).at("stitch_mesh").at("faces"), end_stats.at("faces"));
+  EXPECT_GT(end_stats.at("decreases"), 0);  // the rows shorten as they close round the end
+  const auto bad_end = dir.write("bad-end.json", R"({"mesh": ")" + mesh.string() + R"(", "labels": "auto", "end": {"edge": 3}})");
+  const auto out = run_skein("run " + bad_end.string() + " -o " + (dir / "bad").string());
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.output.find("key 'end': is for \"labels\": \"field\""), std::string::npos) << out.output;
 }
 
 TEST(Job, SigtermLeavesACheckpointToResumeFrom) {

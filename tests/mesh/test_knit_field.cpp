@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <set>
 
 #include "common/error.hpp"
 #include "stitchmesh/knit_field.hpp"
@@ -263,6 +264,62 @@ TEST(KnitField, TheStartRunStopsAtCornersAndGoesRoundATubeEnd) {
   }
   const auto round = tube(40, 120);
   EXPECT_EQ(mesh::field_start_run(round, mesh::default_start_edge(round)).size(), 20u);
+}
+
+/// The rows of the faces along a traced mesh's border at y > 50 (a tube's far end, its start at y = 0).
+std::set<int> rows_at_far_border(const mesh::TracedRows& traced) {
+  std::set<int> rows;
+  for (int e = 0; e < traced.mesh.num_edges(); ++e) {
+    if (!traced.mesh.is_border(e)) continue;
+    const auto [a, b] = traced.mesh.edge_vertices(e);
+    if (traced.mesh.point(a).y() > 50 && traced.mesh.point(b).y() > 50) rows.insert(traced.labels.faces[traced.mesh.edge_uses(e)[0].face].row);
+  }
+  return rows;
+}
+
+TEST(KnitField, RowsTurnToLieAlongAGivenEnd) {
+  const mesh::StitchSize size{6, 5};
+  const auto slanted = triangle_grid(
+      48, 30, true, [](double u, double v) {
+        const double x = 40 * std::cos(2 * M_PI * u);
+        return Eigen::Vector3d(x, (100 + 0.5 * x) * v, 40 * std::sin(2 * M_PI * u));
+      },
+      [](int, int) { return true; }, "slanted.obj");
+  int end_edge = -1;
+  for (int e = 0; e < slanted.num_edges() && end_edge < 0; ++e) {
+    const auto [a, b] = slanted.edge_vertices(e);
+    if (slanted.is_border(e) && slanted.point(a).y() > 50 && slanted.point(b).y() > 50) end_edge = e;
+  }
+  ASSERT_GE(end_edge, 0);
+  const mesh::KnitStart start{mesh::default_start_edge(slanted), {}};
+  const auto straight = mesh::trace_stitch_mesh(slanted, start, size);
+  const auto turned = mesh::trace_stitch_mesh(slanted, start, size, mesh::KnitStart{end_edge, {}});
+  expect_valid(straight, "slanted tube, no end");
+  expect_valid(turned, "slanted tube to its end");
+  // Without an end the rows stay square to the tube and run into the slant one after another (40 mm of slant:
+  // about 8 rows end there). With it the last row follows the slant: one row makes the end.
+  EXPECT_GE(rows_at_far_border(straight).size(), 6u);
+  EXPECT_EQ(rows_at_far_border(turned).size(), 1u);
+  EXPECT_EQ(turned.row_starts, 1);
+  EXPECT_EQ(turned.row_ends, 1);
+  // The rows keep their count between the start and the end: 18 to 20 rows over the tube's mean length 100 mm.
+  EXPECT_GE(turned.labels.rows, 18);
+  EXPECT_LE(turned.labels.rows, 20);
+
+  // A sphere from one pole to the other: the field is the same latitude rings (field_max pi r), closed at the end.
+  const auto ball = sphere(50, 4);
+  const auto poles = mesh::trace_stitch_mesh(ball, {-1, Eigen::Vector3d(0, 60, 0)}, size, mesh::KnitStart{-1, Eigen::Vector3d(0, -60, 0)});
+  expect_valid(poles, "sphere pole to pole");
+  EXPECT_NEAR(poles.field_max, M_PI * 50, 1.5);
+  EXPECT_EQ(poles.row_ends, 1);
+
+  // Refusals: an end that is no border edge, and an end on the start.
+  int inner = -1;
+  for (int e = 0; e < slanted.num_edges() && inner < 0; ++e)
+    if (!slanted.is_border(e)) inner = e;
+  EXPECT_EQ(error_of([&] { mesh::trace_stitch_mesh(slanted, start, size, mesh::KnitStart{inner, {}}); }),
+            "slanted.obj: edge " + std::to_string(inner) + ": is not a border edge; knitting ends on a border or at a point (--end-point)");
+  EXPECT_EQ(error_of([&] { mesh::trace_stitch_mesh(slanted, start, size, start); }), "slanted.obj: the knitting end touches the start: give an end away from it");
 }
 
 TEST(KnitField, RefusesWhatItCannotKnitSayingWhereAndWhy) {
