@@ -69,7 +69,8 @@ constexpr double kFieldMaxTriangles = 4e6;
 
 /// Builds the field surface and the geodesic distance from `sources` (CGAL's heat method, directly on the
 /// isotropically remeshed triangles, whose good shapes the cotangent weights want). `sources` picks the
-/// refined surface's source vertices from their positions and whether they lie on the border.
+/// refined surface's source vertices from their positions and whether they lie on the border; `end_sources`,
+/// when given, picks where knitting ends, and the field becomes the start's share of the two distances.
 using SourcePicker = std::function<std::vector<int>(const std::vector<Eigen::Vector3d>&, const std::vector<char>&)>;
 FieldSurface knitting_distance(const InputMesh& surface, double max_edge, const SourcePicker& sources, const SourcePicker* end_sources) {
   Surface tm;
