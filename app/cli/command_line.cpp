@@ -401,6 +401,10 @@ int run_command_line(int argc, char** argv) {
   smock->add_option("--png", sm.png, "picture: the pattern as drawn, the --snapshots, and the gathered fabric, at one scale");
   smock->add_option("--chart-png", sm.chart_png, "picture: the threads' length over the iterations, the goal dashed");
   smock->add_option("--report", sm.report, "report (JSON; - for stdout)");
+  smock->add_option("--cloth", sm.cloth, "the smocked fabric in 3-D (§4.2) as an OBJ triangle mesh: a fine mesh guided to the lifted stitches, "
+                    "never passing through itself, certified by an exact triangle test");
+  smock->add_option("--cloth-png", sm.cloth_png, "picture of the 3-D fabric, from the front and from the side");
+  smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth: fine squares per side of a pattern square (even)")->capture_default_str();
   smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(CLI::Range(1e-6, 1.0));
   smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
       ->check(CLI::Range(1e-6, 1e4));

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "render/raster.hpp"
 #include "render/smocking_view.hpp"
 
 namespace skein::cli {
@@ -46,6 +47,30 @@ void write_threads_obj(const smocking::Embedding& e, const smocking::Lift& lift,
   });
 }
 
+/// The smocked fabric as an OBJ triangle mesh [mm], z towards the front.
+void write_cloth_obj(const smocking::Cloth& cloth, const std::string& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# skein smock: the smocked fabric (Zhou 2024 §4.2) [mm], z towards the front\n";
+    for (int v = 0; v < cloth.positions.cols(); ++v) out << "v " << cloth.positions(0, v) << " " << cloth.positions(1, v) << " " << cloth.positions(2, v) << "\n";
+    for (const auto& t : cloth.triangles) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  });
+}
+
+/// The smocked fabric from the front and at a slant from the side (the pleats' depth), a light cloth colour.
+render::Image draw_cloth(const smocking::Cloth& cloth) {
+  std::vector<render::Polygon> polygons;
+  for (const auto& t : cloth.triangles) {
+    render::Polygon p;
+    for (int v : t) p.points.push_back(cloth.positions.col(v));
+    p.color = {0.78f, 0.70f, 0.86f};
+    polygons.push_back(std::move(p));
+  }
+  render::View view;
+  view.directions = {{0.3, -0.45, -1.0}, {1.0, -0.6, -0.35}};
+  view.outlines = false;
+  return render::draw(polygons, view);
+}
+
 }  // namespace
 
 json smock(SmockArgs args) {
@@ -70,7 +95,8 @@ json smock(SmockArgs args) {
     o.pull = {px, py};
     if (!o.pull.allFinite() || o.pull.norm() == 0) throw Error("", "--pull", "a pulling direction of non-zero length, found \"" + args.pull + "\"");
   }
-  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.write_smock})
+  if (!args.cloth.empty() || !args.cloth_png.empty()) args.cloth_options.validate();
+  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.write_smock, args.cloth, args.cloth_png})
     if (!path.empty() && path != "-") check_writable(path);
   if (!args.write_smock.empty()) {
     write_file_atomically(args.write_smock, [&](std::ostream& out) { out << smocking::smocking_text(pattern); });
@@ -124,6 +150,30 @@ json smock(SmockArgs args) {
                  {"taut", pattern.style == smocking::Style::Canadian ? json(nullptr) : json(e.taut())},  // knots aim at 0, not τ
                  {"largest_fabric_stretch", e.largest_stretch},
                  {"closest_fabric_over_thickness", e.shortest_fabric}};
+  std::optional<smocking::Cloth> cloth;
+  if (!args.cloth.empty() || !args.cloth_png.empty()) {
+    Stopwatch watch;
+    cloth = smocking::smock_cloth(pattern, e, lift, args.cloth_options);
+    const long crossings = smocking::exact_intersections(*cloth);
+    const double cloth_seconds = watch.seconds();
+    spdlog::info("3-D fabric: {} points, {} triangles, {} frames, {} Newton steps ({} cut short by the collision bound), {:.1f} s; "
+                 "closest non-neighbours {:.3f} mm (barrier reach {:.3f} mm), {} intersecting triangle pairs",
+                 cloth->positions.cols(), cloth->triangles.size(), cloth->frames, cloth->newton_iterations, cloth->ccd_limited_steps, cloth_seconds,
+                 cloth->smallest_distance, cloth->reach, crossings);
+    report["cloth"] = {{"points", cloth->positions.cols()},
+                       {"triangles", cloth->triangles.size()},
+                       {"subdivisions", args.cloth_options.subdivisions},
+                       {"frames", cloth->frames},
+                       {"newton_iterations", cloth->newton_iterations},
+                       {"collision_limited_steps", cloth->ccd_limited_steps},
+                       {"seconds", cloth_seconds},
+                       {"energy", cloth->energy},
+                       {"barrier_reach_mm", cloth->reach},
+                       {"smallest_distance_mm", cloth->smallest_distance},
+                       {"largest_stretch", cloth->largest_stretch},
+                       {"target_rms_mm", cloth->target_error},
+                       {"intersections", crossings}};
+  }
   if (!args.output.empty()) {
     json out = report;
     out["rest"] = matrix_json(e.rest);
@@ -145,8 +195,10 @@ json smock(SmockArgs args) {
   if (!args.obj.empty()) write_threads_obj(e, lift, args.obj);
   if (!args.png.empty()) render::write_png(render::draw_smocking(pattern, e), args.png);
   if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.gamma), args.chart_png);
+  if (!args.cloth.empty()) write_cloth_obj(*cloth, args.cloth);
+  if (!args.cloth_png.empty()) render::write_png(draw_cloth(*cloth), args.cloth_png);
   if (!args.report.empty()) write_json(report, args.report);
-  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report})
+  for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.cloth, args.cloth_png})
     if (!path.empty() && path != "-") spdlog::info("wrote {}", path);
   return report;
 }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "smocking/smocking_cloth.hpp"
 #include "smocking/smocking_embed.hpp"
 #include "smocking/smocking_svg.hpp"
 
@@ -19,6 +20,8 @@ struct SmockArgs {
   std::optional<double> gamma;     ///< default: the pattern's own
   std::string pull = "1,0";        ///< X,Y or "along"
   smocking::EmbedOptions options;  ///< gamma and pull are set from the two above
+  std::string cloth, cloth_png;    ///< the 3-D fabric (§4.2) as OBJ, and its picture; either asks for it
+  smocking::ClothOptions cloth_options;
 };
 
 /// Gathers the pattern and writes what was asked; returns the report (also written to `report`).

@@ -1084,6 +1084,25 @@ TEST(Cli, SmockRefusesBadPatternsAndSaysWhenTheThreadsStall) {
   EXPECT_EQ(run_skein("smock " + vertical.string() + " --pull along").status, 0);
 }
 
+TEST(Cli, SmockClothWritesTheFabricIn3dCertifiedAndRefusesBadSubdivisions) {
+  ScratchDir dir;
+  const auto small = dir.write("z.smock", "format smocking\ngrid 9 5\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\ngamma 0.4\n");
+  const auto r = run_skein("smock " + small.string() + " --cloth " + (dir / "c.obj").string() + " --cloth-png " + (dir / "c.png").string() + " --report " +
+                           (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto cloth = nlohmann::json::parse(slurp(dir / "r.json")).at("cloth");
+  EXPECT_EQ(cloth.at("intersections"), 0);
+  EXPECT_EQ(cloth.at("points"), 17 * 9);
+  EXPECT_GT(cloth.at("smallest_distance_mm").get<double>(), 0);
+  std::istringstream obj(slurp(dir / "c.obj"));
+  int faces = 0;
+  for (std::string line; std::getline(obj, line);) faces += line.rfind("f ", 0) == 0;
+  EXPECT_EQ(faces, 16 * 8 * 2);
+  EXPECT_GT(std::filesystem::file_size(dir / "c.png"), 1000u);
+  expect_refused("smock " + small.string() + " --subdivisions 3 --cloth " + (dir / "odd.obj").string(), dir / "odd.obj",
+                 "subdivisions: must be even, 2 to 32");
+}
+
 TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
   ScratchDir dir;
   const std::string pattern = std::string(SKEIN_PATTERNS_DIR) + "/smocking/canadian-lattice.smock";

@@ -1,0 +1,72 @@
+// The 3-D fabric of Zhou 2024 §4.2: guided to the lifted embedding, never through itself, certified exactly.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "smocking/smocking_cloth.hpp"
+#include "testing.hpp"
+
+using namespace skein;
+using namespace skein::smocking;
+using skein::testing::error_of;
+
+namespace {
+SmockingPattern pattern_of(const std::string& text) { return parse_smocking_pattern("format smocking\n" + text, "test.smock"); }
+
+/// Two flat triangles, the second lifted by `lift` mm and pushed through the first when `through`.
+Cloth two_triangles(double lift, bool through) {
+  Cloth c;
+  c.positions.resize(3, 6);
+  c.positions << 0, 10, 0, 2, 2, 2,  //
+      0, 0, 10, 2, 3, 3,             //
+      0, 0, 0, lift, lift, lift;
+  if (through) c.positions(2, 3) = -lift;  // one corner below the first triangle, two above: it crosses it
+  c.triangles = {{0, 1, 2}, {3, 4, 5}};
+  return c;
+}
+}  // namespace
+
+TEST(SmockingCloth, TheExactTestFindsACrossingAndNoneAtAMicrometre) {
+  EXPECT_EQ(exact_intersections(two_triangles(1e-3, false)), 0);  // 1 µm above: apart
+  EXPECT_EQ(exact_intersections(two_triangles(1e-3, true)), 1);   // 1 µm through: crossing
+  EXPECT_EQ(exact_intersections(two_triangles(1, true)), 1);
+  // Neighbours sharing a corner are not crossings of the fabric through itself.
+  Cloth fan = two_triangles(0, false);
+  fan.triangles = {{0, 1, 2}, {0, 3, 4}};
+  EXPECT_EQ(exact_intersections(fan), 0);
+}
+
+TEST(SmockingCloth, AZigzagGathersIntoPleatsWithoutPassingThroughItself) {
+  // Two zigzag threads on a 9 x 5 grid, pulled to 0.4 of their length.
+  const auto p = pattern_of("grid 9 5\nspacing 10\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\n");
+  EmbedOptions eo;
+  eo.gamma = 0.4;
+  const auto e = embed(p, eo);
+  ASSERT_EQ(e.stopped, EmbedStop::Reached);
+  const auto l = lift(e);
+  ClothOptions o;
+  const Cloth c = smock_cloth(p, e, l, o);
+  EXPECT_EQ(c.positions.cols(), (8 * 2 + 1) * (4 * 2 + 1));
+  EXPECT_EQ(exact_intersections(c), 0);
+  EXPECT_GT(c.smallest_distance, 0);
+  // The fabric gathered: its width across the threads' pull is well under the flat 80 mm, and it left the plane.
+  const double width = c.positions.row(0).maxCoeff() - c.positions.row(0).minCoeff();
+  const double depth = c.positions.row(2).maxCoeff() - c.positions.row(2).minCoeff();
+  EXPECT_LT(width, 0.8 * 80) << width;
+  EXPECT_GT(depth, 2) << depth;
+  // Every stitching point near its lifted place (eq. 11).
+  EXPECT_LT(c.target_error, 3.0);
+  // Deterministic.
+  const Cloth again = smock_cloth(p, e, l, o);
+  EXPECT_EQ((again.positions - c.positions).cwiseAbs().maxCoeff(), 0);
+}
+
+TEST(SmockingCloth, RefusesBadOptions) {
+  ClothOptions o;
+  o.subdivisions = 3;
+  EXPECT_EQ(error_of([&] { o.validate(); }), "subdivisions: must be even, 2 to 32 (stitch midpoints must be fine vertices)");
+  o = {};
+  o.k_bend = -1;
+  EXPECT_EQ(error_of([&] { o.validate(); }), "k_bend: must be a positive number");
+}
