@@ -12,6 +12,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "common/closest_points.hpp"
 #include "common/error.hpp"
 
 namespace skein::smocking {
@@ -28,53 +29,6 @@ struct Pair {
   std::array<double, 4> w{};
   bool edges = false;  ///< two edges (vertices 0, 1 and 2, 3), or a point (0) and a triangle (1, 2, 3)
 };
-
-/// Closest point of triangle abc to p as barycentric weights (Ericson, Real-Time Collision Detection §5.1.5).
-Eigen::Vector3d closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = 1 / (va + vb + vc), v = vb * denom, w = vc * denom;
-  return {1 - v - w, v, w};
-}
-
-/// Parameters (s, t) of the closest points of segments p1q1 and p2q2 (Ericson §5.1.9).
-std::pair<double, double> closest_on_segments(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
-  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0, t = 0;
-  if (a <= 1e-30 && e <= 1e-30) return {0, 0};
-  if (a <= 1e-30) return {0, std::clamp(f / e, 0.0, 1.0)};
-  const double c = d1.dot(r);
-  if (e <= 1e-30) return {std::clamp(-c / a, 0.0, 1.0), 0};
-  const double b = d1.dot(d2), denom = a * e - b * b;
-  s = denom > 1e-30 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  t = (b * s + f) / e;
-  if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
-  else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
-  return {s, t};
-}
 
 /// A uniform grid of boxes, for the pairs within a distance (broad phase).
 class BoxGrid {
