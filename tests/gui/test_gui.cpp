@@ -221,7 +221,7 @@ private slots:
     auto* summary = dialog->findChild<QLabel*>("summary");
     QVERIFY(!dialog->open_exemplars(dir.path() + "/missing"));
     QVERIFY2(summary->text().contains("is not a folder of exemplars"), qPrintable(summary->text()));
-    QVERIFY(dialog->open_exemplars(dir.path()));
+    QVERIFY2(dialog->open_exemplars(dir.path()), qPrintable(summary->text()));
     QVERIFY(!dialog->open_design(kPatterns + "/rib-2x2.knit"));
     QVERIFY2(summary->text().contains("is knitted, not woven"), qPrintable(summary->text()));
     QVERIFY(dialog->open_design(kPatterns + "/twill-2-1.weave"));
