@@ -327,12 +327,28 @@ void ClothOptions::validate() const {
   if (!(tolerance > 0)) throw Error("", "tolerance", "must be positive");
 }
 
+double barrier_reach(const SmockingPattern& pattern, const Embedding& embedding, const ClothOptions& options) {
+  return options.reach > 0 ? options.reach : std::min(embedding.thickness, 0.5 * pattern.spacing / options.subdivisions);
+}
+
+double first_frame_potential(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options,
+                             const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd* grad) {
+  options.validate();
+  std::vector<int> grid_vertex;
+  Eigen::Matrix3Xd rest;
+  const Fabric f = build_fabric(pattern, embedding, lift, options.subdivisions, grid_vertex, rest);
+  if (x.cols() != f.n) throw Error(pattern.name, "", "first_frame_potential: expected " + std::to_string(f.n) + " points");
+  const double reach = barrier_reach(pattern, embedding, options);
+  const Potential potential{f, options, Barrier{reach, options.k_barrier}, rest};
+  return potential.energy(x, near_pairs(f, x, reach), grad, nullptr);
+}
+
 Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options) {
   options.validate();
   Cloth cloth;
   const Fabric f = build_fabric(pattern, embedding, lift, options.subdivisions, cloth.grid_vertex, cloth.rest);
   const double h = pattern.spacing / options.subdivisions;
-  cloth.reach = options.reach > 0 ? options.reach : std::min(embedding.thickness, 0.5 * h);
+  cloth.reach = barrier_reach(pattern, embedding, options);
   for (const auto& t : f.tris) cloth.triangles.push_back(t);
   Potential potential{f, options, Barrier{cloth.reach, options.k_barrier}, cloth.rest};
   Eigen::Matrix3Xd x = cloth.rest;

@@ -49,6 +49,14 @@ struct Cloth {
 /// Drapes the fine fabric from flat to the lifted embedding of `pattern` (embed() then lift()).
 Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options);
 
+/// The barrier's reach d̂ that smock_cloth uses [mm].
+double barrier_reach(const SmockingPattern& pattern, const Embedding& embedding, const ClothOptions& options);
+
+/// The first frame's incremental potential (anchored at the flat fabric) at fine positions `x` (3 x points, as
+/// Cloth::positions), and its gradient when `grad` is given: for checking the energies against finite differences.
+double first_frame_potential(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options,
+                             const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd* grad);
+
 /// Pairs of triangles that share no vertex and intersect, by CGAL's exact predicates (0 for a valid result).
 long exact_intersections(const Cloth& cloth);
 
