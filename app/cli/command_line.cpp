@@ -321,6 +321,9 @@ int run_command_line(int argc, char** argv) {
   pat->add_flag("--tiled", pat_tiled, "with --relax: relax the NxM tiling with free borders instead of the periodic patch");
   pat->add_option("--report", pat_report, "JSON report: the pattern and its yarn; with --relax the same report as relax-yarn");
   pat->add_option("--png", pat_png, "picture of the yarn, front and back");
+  std::string pat_tubes;
+  pat->add_option("--tubes", pat_tubes, "also write the yarn (relaxed with --relax) as tubes for any renderer: OBJ in mm, or glTF 2.0 (.glb, .gltf) in metres; "
+                                        "a pattern in colours gets a material per colour");
   std::string pat_ids, pat_chart_png;
   pat->add_option("--chart-png", pat_chart_png, "the repeat drawn as a knitting chart in the Craft Yarn Council's symbols (patterns/FORMAT.md), as skein "
                                                 "read it; knits and tiles");
@@ -769,9 +772,7 @@ int run_command_line(int argc, char** argv) {
       write_yarn(scaled, yarn_out, false, yarn_units);
       spdlog::info("wrote {}", yarn_out);
       if (!yarn_tubes.empty()) {
-        const auto ext = fs::path(yarn_tubes).extension();
-        if (ext == ".glb" || ext == ".gltf") relax::write_tube_gltf(yarn, yarn_tubes);  // metres whatever --units says
-        else relax::write_tube_obj(scaled, yarn_tubes, {.unit = yarn_units});
+        write_tubes(yarn, yarn_tubes, unit, yarn_units);
         spdlog::info("wrote {}", yarn_tubes);
       }
       if (!yarn_ids.empty()) {
@@ -974,7 +975,7 @@ int run_command_line(int argc, char** argv) {
       ry_options.interrupt = install_interrupt_handlers();
       const json report = relax_and_write(yarn, system, targets, ry_options, state,
                                           {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr)),
-                                           ry_extra, 900, render::YarnColor::StitchType, 1, ry_radius_out});
+                                           ry_extra, 900, render::YarnColor::StitchType, 1, ry_radius_out, {}, {}});
       if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
       return exit_status(report);
     }
@@ -1076,6 +1077,7 @@ int run_command_line(int argc, char** argv) {
                                    {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
         yarn = std::move(patch.yarn);
         targets.periodic = std::move(patch.map);
+        if (pattern.format != mesh::PatternFormat::Woven) mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, patch.tiles, patch.tiles), pattern.palette);
       } else if (pattern.format == mesh::PatternFormat::Woven) {
         yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius);
       } else {
@@ -1083,11 +1085,26 @@ int run_command_line(int argc, char** argv) {
         mesh::EmitOptions emit;
         emit.yarn_radius = sim_radius;
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
+        mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
         ids_mesh = stitch_mesh;
       }
       if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
       spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
+      // Yarn in colours: how much of each, as emitted (the tiling's, or with --relax the patch's).
+      const auto colour_report = [&](const mesh::YarnCurves& y) {
+        json colours = json::array();
+        const auto length = mesh::yarn_length_by_colour(y);
+        for (size_t k = 0; k < pattern.palette.size(); ++k)
+          colours.push_back({{"name", pattern.palette[k].name}, {"description", pattern.palette[k].description},
+                             {"srgb", mesh::colour_code(pattern.palette[k].srgb)}, {"yarn_mm", k < length.size() ? length[k] : 0.0}});
+        return colours;
+      };
+      const auto color = pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn
+                         : pattern.palette.empty()                    ? render::YarnColor::StitchType
+                                                                      : render::YarnColor::Colour;
+      if (!pattern.palette.empty()) pat_extra["colours"] = colour_report(yarn);
+      if (!pat_tubes.empty()) check_writable(pat_tubes);
       if (pat_relax) {
         pat_options.audit = !pat_no_audit;
         pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
@@ -1125,18 +1142,18 @@ int run_command_line(int argc, char** argv) {
           pat_extra["period"] = {sx, sy};
           period_scale = {sx, sy};
         }
-        const auto color = pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType;
         if (preview) pat_extra["preview"] = {{"output", pat_preview}, {"png", pat_preview_png}, {"tile", {across, up}}};
         auto state = relax::initial_state(system, pat_options);
         const json report = relax_and_write(yarn, system, targets, pat_options, state,
                                             {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
                                              !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
-                                             compressed ? radius : 0.0, {pattern.width(), pattern.height()}});
+                                             compressed ? radius : 0.0, {pattern.width(), pattern.height()}, pat_tubes});
         if (preview && report.at("stopped_by") != "interrupted") {
           // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
-          const auto tiled = pattern.format == mesh::PatternFormat::Woven
-                                 ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
-                                 : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
+          auto tiled = pattern.format == mesh::PatternFormat::Woven
+                           ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
+                           : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
+          if (pattern.format != mesh::PatternFormat::Woven) mesh::colour_yarn(tiled, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
           const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
           out.radius = compressed ? radius : out.radius / pat_gamma;
@@ -1156,11 +1173,11 @@ int run_command_line(int argc, char** argv) {
                   {"format", pattern.format == mesh::PatternFormat::Knit ? "knit" : pattern.format == mesh::PatternFormat::Tiles ? "tiles" : "woven"},
                   {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}};
         if (!fabric.report.is_null()) j["fabric"] = fabric.report;
+        if (pat_extra.contains("colours")) j["colours"] = pat_extra["colours"];
         write_json(j, pat_report);
       }
-      if (!pat_png.empty())
-        render_yarn_tubes(yarn, pat_png, pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn : render::YarnColor::StitchType, pat_views,
-                          pat_panel);
+      if (!pat_png.empty()) render_yarn_tubes(yarn, pat_png, color, pat_views, pat_panel);
+      if (!pat_tubes.empty()) write_tubes(yarn, pat_tubes), spdlog::info("wrote {}", pat_tubes);
       spdlog::info("wrote {}", pat_out);
       return 0;
     }

@@ -169,6 +169,15 @@ void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool prev
   else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
 }
 
+void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale, const std::string& unit) {
+  const auto ext = fs::path(path).extension();
+  if (ext == ".glb" || ext == ".gltf") return relax::write_tube_gltf(yarn, path);  // metres, whatever the scale
+  auto scaled = yarn;
+  for (auto& p : scaled.points) p *= scale;
+  scaled.radius *= scale;
+  relax::write_tube_obj(scaled, path, {.unit = unit});
+}
+
 std::pair<int, int> parse_rows(const std::string& s) {
   int a = 0, b = 0;
   char colon = 0, tail = 0;
@@ -344,6 +353,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   yarn_out_curves.radius = run.radius_out > 0 ? run.radius_out : yarn_out_curves.radius * run.scale;
   const bool final = report.stopped_by != "interrupted";
   if (final) write_yarn(yarn_out_curves, run.output);
+  if (final && !run.tubes.empty()) write_tubes(yarn_out_curves, run.tubes);
   spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events{}",
                report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
                report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events),

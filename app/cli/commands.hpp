@@ -102,6 +102,9 @@ mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string&
 /// Writes yarn as .bcc or .obj polylines, by the extension; `preview` marks it as placed for a preview, not
 /// relaxed (relax::write_bcc).
 void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
+/// Writes the yarn's tubes for any renderer: glTF 2.0 when `path` ends in .glb or .gltf (in metres), else OBJ with
+/// its coordinates times `scale`, said to be in `unit`; yarn in colours gets a material per colour (a .mtl beside the OBJ).
+void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale = 1, const std::string& unit = "mm");
 
 /// "A:B" (inclusive) or "A" → row ids.
 std::pair<int, int> parse_rows(const std::string& s);
@@ -141,6 +144,7 @@ struct YarnRunOutputs {
   double radius_out = 0;        ///< the written yarn's radius where it is not the relaxed one's (a compressed contact); 0: that one
   /// A periodic patch's repeat in stitches (wales x courses; wovens: warps x wefts), for the gauge of a free period.
   std::array<int, 2> repeat = {0, 0};
+  std::string tubes;  ///< the relaxed yarn's tubes too (write_tubes), unless empty
 };
 
 /// A periodic patch's yarn per stitch of its repeat (wales x courses): the rest lengths of the segments that start

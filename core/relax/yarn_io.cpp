@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -185,10 +186,15 @@ namespace {
 struct TubeBlock {
   std::vector<Eigen::Vector3d> positions, normals;
   std::vector<std::array<int, 4>> quads;
+  std::vector<int> quad_colour;  ///< per quad: the yarn's colour there (YarnCurves::point_colour), or 0 without colours
 };
 std::vector<TubeBlock> tube_blocks(const YarnCurves& yarn, const TubeOptions& options) {
   std::vector<TubeBlock> blocks;
-  for (const auto& pts : sample_curves(yarn, std::max(1, options.samples_per_segment))) {
+  const int per_segment = std::max(1, options.samples_per_segment);
+  const auto curves = sample_curves(yarn, per_segment);
+  const bool coloured = yarn.point_colour.size() == yarn.points.size() && !yarn.colours.empty();
+  for (int curve = 0; curve < static_cast<int>(curves.size()); ++curve) {
+    const auto& pts = curves[curve];
     if (pts.size() < 2) continue;
     TubeBlock b;
     const auto rings = tube_rings(pts, yarn.radius, options.sides);
@@ -198,6 +204,8 @@ std::vector<TubeBlock> tube_blocks(const YarnCurves& yarn, const TubeOptions& op
       for (int k = 0; k < options.sides; ++k) {
         const int a = i * options.sides + k, c = i * options.sides + (k + 1) % options.sides;
         b.quads.push_back({a, c, c + options.sides, a + options.sides});
+        const int point = yarn.curve_start[curve] + std::min(yarn.curve_size(curve) - 1, i / per_segment);  // where this stretch starts
+        b.quad_colour.push_back(coloured ? yarn.point_colour[point] : 0);
       }
     blocks.push_back(std::move(b));
   }
@@ -205,10 +213,41 @@ std::vector<TubeBlock> tube_blocks(const YarnCurves& yarn, const TubeOptions& op
 }
 }  // namespace
 
+namespace {
+/// A colour as renderers take material colours: linear, from the palette's sRGB.
+std::array<double, 3> linear_colour(const std::array<double, 3>& srgb) {
+  std::array<double, 3> out;
+  for (int k = 0; k < 3; ++k) out[k] = srgb[k] <= 0.04045 ? srgb[k] / 12.92 : std::pow((srgb[k] + 0.055) / 1.055, 2.4);
+  return out;
+}
+
+/// A material's name from a palette colour's: letters, digits, '-' and '_' only.
+std::string material_name(const YarnCurves::Colour& colour) {
+  std::string name = "yarn-";
+  for (char ch : colour.name) name += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_';
+  return name;
+}
+}  // namespace
+
 void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
   const auto blocks = tube_blocks(yarn, options);
+  // Yarn in colours: a material library beside the OBJ (the same name, .mtl), one material per colour.
+  const bool coloured = yarn.point_colour.size() == yarn.points.size() && !yarn.colours.empty();
+  std::filesystem::path library = path;
+  library.replace_extension(".mtl");
+  if (coloured)
+    write_file_atomically(library, [&](std::ostream& out) {
+      out << "# skein yarn colours (linear RGB)\n";
+      char buf[96];
+      for (const auto& colour : yarn.colours) {
+        const auto rgb = linear_colour(colour.srgb);
+        std::snprintf(buf, sizeof buf, "Kd %.4f %.4f %.4f\n", rgb[0], rgb[1], rgb[2]);
+        out << "newmtl " << material_name(colour) << "\n" << buf << "Ka 0 0 0\nKs 0.05 0.05 0.05\nNs 10\nillum 2\n\n";
+      }
+    });
   write_file_atomically(path, [&](std::ostream& out) {
     out << "# skein yarn tubes: radius " << yarn.radius << " " << options.unit << ", " << options.sides << " sides\n";
+    if (coloured) out << "mtllib " << library.filename().string() << "\n";
     char buf[96];
     long base = 1;
     for (size_t c = 0; c < blocks.size(); ++c) {
@@ -222,7 +261,15 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
         out << buf;
       }
       const auto corner = [&](int v) { return std::to_string(base + v) + "//" + std::to_string(base + v); };
-      for (const auto& q : blocks[c].quads) out << "f " << corner(q[0]) << ' ' << corner(q[1]) << ' ' << corner(q[2]) << ' ' << corner(q[3]) << '\n';
+      int material = -1;
+      for (size_t i = 0; i < blocks[c].quads.size(); ++i) {
+        const auto& q = blocks[c].quads[i];
+        if (coloured && blocks[c].quad_colour[i] != material) {
+          material = blocks[c].quad_colour[i];
+          out << "usemtl " << material_name(yarn.colours[static_cast<size_t>(material)]) << '\n';
+        }
+        out << "f " << corner(q[0]) << ' ' << corner(q[1]) << ' ' << corner(q[2]) << ' ' << corner(q[3]) << '\n';
+      }
       base += static_cast<long>(blocks[c].positions.size());
     }
   });
@@ -231,8 +278,10 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
 void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
   const auto blocks = tube_blocks(yarn, options);
   // One primitive of triangles: positions in metres (glTF's unit; the yarn is in mm), normals, 32-bit indices.
+  // Yarn in colours: one primitive (and material) per colour.
+  const bool coloured = yarn.point_colour.size() == yarn.points.size() && !yarn.colours.empty();
   std::vector<float> positions, normals;
-  std::vector<std::uint32_t> indices;
+  std::vector<std::vector<std::uint32_t>> indices(coloured ? yarn.colours.size() : 1);
   float low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (const auto& b : blocks) {
     const auto base = static_cast<std::uint32_t>(positions.size() / 3);
@@ -242,8 +291,9 @@ void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, 
         positions.push_back(x), normals.push_back(static_cast<float>(b.normals[i][k]));
         low[k] = std::min(low[k], x), high[k] = std::max(high[k], x);
       }
-    for (const auto& q : b.quads)
-      for (int v : {q[0], q[1], q[2], q[0], q[2], q[3]}) indices.push_back(base + static_cast<std::uint32_t>(v));
+    for (size_t i = 0; i < b.quads.size(); ++i)
+      for (int v : {b.quads[i][0], b.quads[i][1], b.quads[i][2], b.quads[i][0], b.quads[i][2], b.quads[i][3]})
+        indices[coloured ? static_cast<size_t>(b.quad_colour[i]) : 0].push_back(base + static_cast<std::uint32_t>(v));
   }
   if (positions.empty()) throw Error(path.string(), "", "the yarn has no curve of two or more points to make a tube of");
   if (positions.size() / 3 > 0xffffffffull) throw Error(path.string(), "", "more tube vertices than 32-bit indices reach");
@@ -281,17 +331,29 @@ void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, 
   model.accessors[pos].maxValues = {high[0], high[1], high[2]};
   const int nrm = accessor(view(normals.data(), normals.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
                            normals.size() / 3, TINYGLTF_TYPE_VEC3);
-  const int idx = accessor(view(indices.data(), indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
-  model.buffers.push_back(std::move(buffer));
-  tinygltf::Primitive primitive;
-  primitive.attributes["POSITION"] = pos;
-  primitive.attributes["NORMAL"] = nrm;
-  primitive.indices = idx;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
   tinygltf::Mesh mesh;
   mesh.name = "yarn";
-  mesh.primitives.push_back(primitive);
+  for (size_t k = 0; k < indices.size(); ++k) {
+    if (indices[k].empty()) continue;
+    tinygltf::Primitive primitive;
+    primitive.attributes["POSITION"] = pos;
+    primitive.attributes["NORMAL"] = nrm;
+    primitive.indices = accessor(view(indices[k].data(), indices[k].size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices[k].size(), TINYGLTF_TYPE_SCALAR);
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    if (coloured) {
+      tinygltf::Material material;
+      material.name = material_name(yarn.colours[k]);
+      const auto rgb = linear_colour(yarn.colours[k].srgb);
+      material.pbrMetallicRoughness.baseColorFactor = {rgb[0], rgb[1], rgb[2], 1.0};
+      material.pbrMetallicRoughness.metallicFactor = 0.0;
+      material.pbrMetallicRoughness.roughnessFactor = 0.9;
+      model.materials.push_back(material);
+      primitive.material = static_cast<int>(model.materials.size()) - 1;
+    }
+    mesh.primitives.push_back(primitive);
+  }
+  model.buffers.push_back(std::move(buffer));
   model.meshes.push_back(mesh);
   tinygltf::Node node;
   node.mesh = 0;

@@ -19,10 +19,13 @@ std::vector<Polygon> yarn_polygons(const mesh::YarnCurves& yarn, YarnColor color
     const auto rings = relax::tube_rings(pts, yarn.radius, sides);
     for (size_t i = 0; i + 1 < rings.size(); ++i) {
       Eigen::Vector3f rgb;
-      if (color == YarnColor::Yarn || yarn.point_type.empty() || yarn.point_type[first] < 0) {
+      const int point = first + std::min(n - 1, static_cast<int>(i) / samples_per_segment);  // where this stretch starts
+      if (color == YarnColor::Colour && yarn.point_colour.size() == yarn.points.size()) {
+        const auto& srgb = yarn.colours.at(static_cast<size_t>(yarn.point_colour[point])).srgb;
+        for (int k = 0; k < 3; ++k) rgb[k] = linear_of_byte(static_cast<unsigned>(std::lround(srgb[k] * 255)));
+      } else if (color == YarnColor::Yarn || yarn.point_type.empty() || yarn.point_type[first] < 0) {
         rgb = row_color(c);
       } else {  // the type of the control point this stretch starts from
-        const int point = first + std::min(n - 1, static_cast<int>(i) / samples_per_segment);
         const int type = yarn.point_type[point];
         rgb = type >= 0 && type < static_cast<int>(yarn.type_names.size()) ? stitch_color(yarn.type_names[type]) : Eigen::Vector3f(0.6f, 0.6f, 0.6f);
       }

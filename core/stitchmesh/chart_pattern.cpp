@@ -129,7 +129,7 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
   for (std::string raw; std::getline(in, raw);) {
     ++line_no;
     if (raw.size() > kLongestLine) throw Error(source, at(line_no, 0), "is longer than " + std::to_string(kLongestLine) + " characters");
-    const auto hash = raw.find('#');
+    const auto hash = comment_start(raw);
     if (hash != std::string::npos) {
       const std::string c = trim(raw.substr(hash + 1));
       if (c.rfind("name:", 0) == 0 || c.rfind("source:", 0) == 0) comments.push_back("# " + c);
@@ -143,6 +143,13 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
       if (lowered.rfind("format", 0) != 0) throw Error(source, at(line_no, 0), "expected 'format chart' (or 'format chart round') first");
       round = lowered.find("round") != std::string::npos;
       started = true;
+      continue;
+    }
+    if (read_colour_declaration(content, false, 0, at(line_no, 0))) {
+      // "colour B: red #b3261e": passed on to the written reader, which keeps the palette; a key gives the
+      // colour's stitches ("key X k1 B / p1 B").
+      if (!drawn.empty()) throw Error(source, at(line_no, 0), "a colour declaration after the chart's rows: declare the colours first");
+      comments.push_back(content);
       continue;
     }
     if (lowered.rfind("key ", 0) == 0 || lowered.rfind("key\t", 0) == 0) {
@@ -311,18 +318,42 @@ std::string cable_abbreviation(const PatternCable& c) {
   return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LC";
 }
 
+/// A symbol's stitch on the right and the wrong side, as the default key and kWrittenKeys give it.
+std::pair<std::string, std::string> symbol_meaning(char symbol) {
+  for (const auto& [c, meaning] : kWrittenKeys)
+    if (c == symbol) return {meaning.substr(0, meaning.find(" / ")), meaning.substr(meaning.find(" / ") + 3)};
+  const auto key = default_key();
+  const Symbol& s = key.at(std::string(1, symbol));
+  return {s.right, s.wrong};
+}
+
 std::string chart_text(const Pattern& pattern, bool round) {
   std::vector<std::string> grid(pattern.rows.size());
   std::set<char> used;
+  // A stitch in a colour other than the first: a symbol of its own, keyed as the stitch in that colour
+  // ("key a k B / p B"), from these letters (the default key's and the written keys' left out).
+  static const std::string kColourSymbols = "abcdefghijklmnpqrsuyz";
+  std::map<std::pair<char, int>, char> coloured;
   for (size_t r = 0; r < pattern.rows.size(); ++r)
     for (size_t f = 0; f < pattern.rows[r].size(); ++f) {
       const std::string& type = pattern.rows[r][f];
-      const std::string cells = cells_of_type(type);
+      std::string cells = cells_of_type(type);
       if (cells.empty())
         throw Error("", "row " + std::to_string(r + 1) + ", stitch " + std::to_string(f + 1),
                     "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, slips, two- and three-into-one decreases, yarn-overs beside a knit or purl, Leaf's yo pairs and cables)");
-      grid[r] += cells;
       used.insert(cells.begin(), cells.end());
+      const int colour = pattern.colours.empty() ? 0 : pattern.colours[r][f];
+      if (colour > 0)
+        for (char& cell : cells) {
+          auto [it, added] = coloured.try_emplace({cell, colour}, '\0');
+          if (added) {
+            if (coloured.size() > kColourSymbols.size())
+              throw Error("", "row " + std::to_string(r + 1), "more than " + std::to_string(kColourSymbols.size()) + " stitches in colours for one chart");
+            it->second = kColourSymbols[coloured.size() - 1];
+          }
+          cell = it->second;
+        }
+      grid[r] += cells;
     }
   // Cables over their cells, a symbol each kind (C, D, E, ...).
   std::map<std::string, char> cable_symbol;
@@ -344,8 +375,17 @@ std::string chart_text(const Pattern& pattern, bool round) {
   if (!pattern.note.empty()) out << "# source: " << pattern.note << "\n";
   out << "# the fabric from the right side, row 1 at the bottom (patterns/FORMAT.md, \"Charts\"); written by skein\n";
   out << (round ? "format chart round" : "format chart") << "\n";
+  for (const auto& c : pattern.palette)
+    out << "colour " << c.name << ": " << (c.description.empty() ? "" : c.description + " ") << colour_code(c.srgb) << "\n";
   for (const auto& [symbol, meaning] : kWrittenKeys)
     if (used.count(symbol)) out << "key " << symbol << " " << meaning << "\n";
+  for (const auto& [cell, symbol] : coloured) {
+    const auto [right, wrong] = symbol_meaning(cell.first);
+    const std::string& name = pattern.palette[static_cast<size_t>(cell.second)].name;
+    out << "key " << symbol << " " << right << " " << name;
+    if (!wrong.empty()) out << " / " << wrong << " " << name;
+    out << "\n";
+  }
   for (const auto& [name, symbol] : cable_symbol) out << "key " << symbol << " " << name << "\n";
   const int digits = static_cast<int>(std::to_string(grid.size()).size());
   for (size_t r = grid.size(); r-- > 0;) {
@@ -360,7 +400,7 @@ bool same_stitches(const Pattern& a, const Pattern& b) {
   const auto order = [](const PatternCable& x, const PatternCable& y) { return std::tie(x.row, x.first_loop) < std::tie(y.row, y.first_loop); };
   std::sort(ca.begin(), ca.end(), order);
   std::sort(cb.begin(), cb.end(), order);
-  return a.rows == b.rows && ca == cb;
+  return a.rows == b.rows && ca == cb && a.palette == b.palette && a.colours == b.colours;
 }
 
 }  // namespace
@@ -400,10 +440,14 @@ std::string write_written_pattern(const Pattern& pattern) {
       from = comma + 2;
     }
     std::string text = head.str(0);
+    // Plain knits and purls, also in a colour ("k B"), are counted: "k3 B".
+    static const std::regex plain(R"(^(k|p)( \S+)?$)");
     for (size_t i = 0; i < items.size();) {
       size_t run = 1;
-      while (i + run < items.size() && items[i + run] == items[i] && (items[i] == "k" || items[i] == "p")) ++run;
-      text += (i ? ", " : "") + items[i] + (items[i] == "k" || items[i] == "p" ? std::to_string(run) : "");
+      std::smatch pm;
+      const bool counted = std::regex_match(items[i], pm, plain);
+      while (counted && i + run < items.size() && items[i + run] == items[i]) ++run;
+      text += (i ? ", " : "") + (counted ? pm[1].str() + std::to_string(run) + pm[2].str() : items[i]);
       i += run;
     }
     m.text = text + ".";

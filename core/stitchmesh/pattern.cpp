@@ -73,12 +73,14 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   std::string raw;
   int line_no = 0;
   bool have_format = false;
-  std::vector<Row> lines;  // top line first, as written
+  std::vector<Row> lines;         // top line first, as written
+  std::vector<Row> colour_lines;  // after `colours`: the colour of each stitch, laid out as the rows
+  bool in_colours = false;
   const auto at = [&](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
   while (std::getline(in, raw)) {
     ++line_no;
     std::string line = raw;
-    if (const auto hash = line.find('#'); hash != std::string::npos) {
+    if (const auto hash = comment_start(line); hash != std::string::npos) {
       const std::string comment = trim(line.substr(hash + 1));
       for (const auto& [key, field] : {std::pair{"name:", &p.name}, std::pair{"source:", &p.note}})
         if (comment.rfind(key, 0) == 0) *field = trim(comment.substr(std::string(key).size()));
@@ -96,7 +98,22 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
       have_format = true;
       continue;
     }
-    lines.push_back({tokens, line_no});
+    if (p.format != PatternFormat::Woven) {
+      // Colour (issue 26): `colour A: cream #f0e6cf` lines, then after `colours` a colour name per stitch.
+      if (auto c = read_colour_declaration(line, false, static_cast<int>(p.palette.size()), at(line_no, 0))) {
+        if (in_colours || !lines.empty()) throw Error(source, at(line_no, 0), "a colour declaration after the rows: declare the colours first");
+        if (find_colour(p.palette, c->name) >= 0) throw Error(source, at(line_no, 0), "colour '" + c->name + "' is declared twice");
+        p.palette.push_back(std::move(*c));
+        continue;
+      }
+      if (tokens.size() == 1 && (tokens[0].text == "colours" || tokens[0].text == "colors")) {
+        if (in_colours) throw Error(source, at(line_no, 0), "a second 'colours' block");
+        if (p.palette.empty()) throw Error(source, at(line_no, 0), "'colours' with no colour declared: declare them first ('colour A: cream')");
+        in_colours = true;
+        continue;
+      }
+    }
+    (in_colours ? colour_lines : lines).push_back({tokens, line_no});
   }
   if (!have_format) throw Error(source, "", "is empty: a pattern starts with 'format knit', 'format tiles' or 'format woven' and has at least one row");
   if (lines.empty()) throw Error(source, "", "holds no rows after its format line");
@@ -154,7 +171,46 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     row_line.push_back(it->line);
   }
   check_stacking(p, row_line, source);
+  if (!p.palette.empty()) {
+    // Each colour line gives its row's stitches their colours, one name per stitch face (a cable's each), or one
+    // name for the whole row; no colours block: every stitch in the first colour.
+    if (!colour_lines.empty() && colour_lines.size() != lines.size())
+      throw Error(source, at(colour_lines.front().line, 0),
+                  "the colours block has " + std::to_string(colour_lines.size()) + " lines but the pattern " + std::to_string(lines.size()) + " rows");
+    for (size_t r = 0; r < p.rows.size(); ++r) {
+      std::vector<int> colours(p.rows[r].size(), 0);
+      if (!colour_lines.empty()) {
+        const Row& c = colour_lines[colour_lines.size() - 1 - r];
+        if (c.tokens.size() != 1 && c.tokens.size() != colours.size())
+          throw Error(source, at(c.line, 0), "gives " + std::to_string(c.tokens.size()) + " colours for row " + std::to_string(r + 1) + " (line " +
+                                                 std::to_string(row_line[r]) + "), which has " + std::to_string(colours.size()) +
+                                                 " stitches (a cable's each): one colour per stitch, or one for the whole row");
+        for (size_t k = 0; k < colours.size(); ++k) {
+          const Token& t = c.tokens[c.tokens.size() == 1 ? 0 : k];
+          const int i = find_colour(p.palette, t.text);
+          if (i < 0) {
+            std::string names;
+            for (const auto& d : p.palette) names += (names.empty() ? "" : ", ") + d.name;
+            throw Error(source, at(c.line, t.column), "'" + t.text + "' is not a declared colour (" + names + ")");
+          }
+          colours[k] = i;
+        }
+      }
+      p.colours.push_back(std::move(colours));
+    }
+  } else if (!colour_lines.empty()) {
+    throw Error(source, at(colour_lines.front().line, 0), "colour lines with no colours declared");
+  }
   return p;
+}
+
+std::vector<int> pattern_face_colours(const Pattern& pattern, int across, int up) {
+  if (pattern.palette.empty() || pattern.colours.size() != pattern.rows.size()) return {};
+  std::vector<int> out;
+  // In pattern_stitch_mesh's order: row by row, each row's repeats left to right.
+  for (int r = 0; r < up * pattern.height(); ++r)
+    for (int copy = 0; copy < across; ++copy) out.insert(out.end(), pattern.colours[r % pattern.height()].begin(), pattern.colours[r % pattern.height()].end());
+  return out;
 }
 
 void check_stacking(const Pattern& p, const std::vector<int>& row_line, const std::string& source) {

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "stitchmesh/colours.hpp"
 #include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_curves.hpp"
@@ -35,6 +36,10 @@ struct Pattern {
   std::vector<PatternCable> cables;
   /// Woven patterns: per weft row, bottom row first, per warp column: 1 when the weft lies over the warp.
   std::vector<std::vector<char>> over;
+  /// Knits in colour (issue 26): the palette, and per row per stitch face (as `rows`, a cable's faces each) its
+  /// index into it. Both empty for a pattern in one colour.
+  std::vector<PatternColour> palette;
+  std::vector<std::vector<int>> colours;
 
   int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
   int height() const;  ///< rows or weft yarns in one repeat
@@ -56,6 +61,9 @@ void check_stacking(const Pattern& pattern, const std::vector<int>& row_line, co
 /// `up` times along the wale, stitches `size` apart; row 1 at y = 0. Cables become cable marks on the course
 /// edges above their stitches (none in the top row: nothing is above it). Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
+
+/// The palette index of each face of pattern_stitch_mesh(pattern, across, up); empty for a pattern in one colour.
+std::vector<int> pattern_face_colours(const Pattern& pattern, int across, int up);
 
 /// Whether tiling the knit pattern re-meshes the stitches it covers (its rows have increases, decreases or
 /// lace, or it has cables) instead of repainting plain stitches (tile_pattern).

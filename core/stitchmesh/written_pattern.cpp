@@ -44,6 +44,7 @@ struct Item {
   int column = 0;          ///< 1-based, in the line
   int over = 0, under = 0, order = 1;  ///< Cable, as seen from the front (PatternCable)
   int times = 1;           ///< Group
+  int colour = -1;         ///< Stitch, Cable, Fill: index into the pattern's palette (issue 26), -1 for none said
   std::vector<Item> items; ///< Group
 };
 
@@ -142,8 +143,11 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
 /// Reads one row's instructions (`text` lower-cased, starting at column `offset` + 1 of its line).
 class InstructionReader {
 public:
-  InstructionReader(const std::string& text, int offset, bool right_side, const std::string& source, int line)
-      : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line) {}
+  /// `palette` and `colour`: the pattern's colours and the one worked with, which "with B" changes for this and
+  /// the following rows.
+  InstructionReader(const std::string& text, int offset, bool right_side, const std::string& source, int line,
+                    const std::vector<PatternColour>& palette, int& colour)
+      : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line), m_palette(palette), m_colour(colour) {}
 
   std::vector<Item> read() {
     std::vector<Item> items = sequence(false);
@@ -223,6 +227,35 @@ private:
     return make(Item::Stitch, "(" + written + ") in next st", static_cast<int>(at) + m_offset + 1, type);
   }
 
+  /// "with B", "using MC", "change to CC", "join A": the colour worked from here on; false when no declared
+  /// colour is named here.
+  bool colour_change() {
+    std::smatch m;
+    if (m_palette.empty() || !match(R"((?:with|using|change\s+to|switch\s+to|join)\s+([a-z0-9]+))", m)) return false;
+    const int c = find_colour(m_palette, m[1].str());
+    if (c < 0) return false;
+    m_pos += static_cast<size_t>(m.length(0));
+    m_colour = c;
+    return true;
+  }
+  /// The colour of the stitches just read (items from `first` on): the one a following "A", "in MC" or "with B"
+  /// names ("k1 A, k1 B" in stranded knitting), else the colour worked with.
+  void colour_stitches(std::vector<Item>& items, size_t first) {
+    if (m_palette.empty() || items.size() == first) return;
+    int colour = m_colour;
+    bool said = false;
+    std::smatch m;
+    if (match(R"(\s*(?:in\s+|with\s+)?([a-z0-9]+))", m))
+      if (const int c = find_colour(m_palette, m[1].str()); c >= 0) {
+        m_pos += static_cast<size_t>(m.length(0));
+        colour = c;
+        said = true;
+      }
+    for (size_t i = first; i < items.size(); ++i)
+      if (items[i].kind == Item::Stitch || items[i].kind == Item::Cable || items[i].kind == Item::Fill)
+        if (said || items[i].colour < 0) items[i].colour = colour;
+  }
+
   std::vector<Item> sequence(bool in_group) {
     std::vector<Item> items;
     for (;;) {
@@ -231,7 +264,8 @@ private:
         if (in_group) fail(m_pos, "a '[' or '(' group is not closed");
         return items;
       }
-      const size_t at = m_pos;
+      if (colour_change()) continue;
+      const size_t at = m_pos, first = items.size();
       std::smatch m;
       if (m_text[m_pos] == '*') {
         ++m_pos;
@@ -248,6 +282,8 @@ private:
         if (match(R"((?:all\s+)?in(?:to)?\s+(?:the\s+)?(?:next|same)\s+(?:st|stitch)\b)", times)) {
           m_pos += static_cast<size_t>(times.length(0));
           items.push_back(worked_into_one(g, at));
+          items.back().colour = g.items.front().colour;
+          colour_stitches(items, first);
           continue;
         }
         if (match(R"(\s*(?:x\s*(\d+)|(\d+)\s*(?:times|x)))", times)) {
@@ -333,6 +369,7 @@ private:
                        std::string(word == "kfb" || word == "pfb" ? "; the nearest increase into one stitch is '(k1, p1) in next st'" : ""));
         fail(at, "unknown abbreviation '" + word + "'; did you mean " + suggestions(word) + "? (patterns/FORMAT.md lists what is read)");
       }
+      colour_stitches(items, first);
     }
   }
 
@@ -341,6 +378,8 @@ private:
   bool m_rs;
   std::string m_source;
   int m_line;
+  const std::vector<PatternColour>& m_palette;
+  int& m_colour;
   size_t m_pos = 0;
 };
 
@@ -518,9 +557,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   };
   std::vector<Instructions> said;  // per row: what was written for it
   bool round = false;
+  int colour = 0;  // the colour worked with: the first declared until "with B" says otherwise
   // Row `number` (1-based, the next one) worked from instructions: on its own side.
   const auto work = [&](const Instructions& w) {
-    InstructionReader reader(w.body, w.offset, w.right_side, source, w.line);
+    InstructionReader reader(w.body, w.offset, w.right_side, source, w.line, p.palette, colour);
     rows.push_back(split_row(reader.read(), w.right_side, w.line, source));
     said.push_back(w);
   };
@@ -547,7 +587,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     if (raw.size() > kLongestLine)
       throw Error(source, "line " + std::to_string(line_no), "is longer than " + std::to_string(kLongestLine) + " characters");
     std::string line = raw;
-    if (const auto hash = line.find('#'); hash != std::string::npos) {
+    if (const auto hash = comment_start(line); hash != std::string::npos) {
       const std::string comment = line.substr(hash + 1);
       const auto b = comment.find_first_not_of(" \t");
       const std::string c = b == std::string::npos ? "" : comment.substr(b);
@@ -592,6 +632,14 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       if (std::regex_search(line, heading))
         throw Error(source, "line " + std::to_string(line_no),
                     "a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' (patterns/FORMAT.md)");
+      if (!started) {
+        // "MC: cream", "Colour A: navy #1f2a44": a colour of the palette (issue 26).
+        if (auto c = read_colour_declaration(line, true, static_cast<int>(p.palette.size()), "line " + std::to_string(line_no))) {
+          if (find_colour(p.palette, c->name) >= 0) throw Error(source, "line " + std::to_string(line_no), "colour '" + c->name + "' is declared twice");
+          p.palette.push_back(std::move(*c));
+          continue;
+        }
+      }
       if (!started) {  // a description before the rows: "Multiple of 4 sts plus 2", "Cast on ..."
         description += (description.empty() ? "" : " ") + line.substr(line.find_first_not_of(" \t"));
         continue;
@@ -667,6 +715,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   std::vector<int> row_line;
   for (size_t r = 0; r < rows.size(); ++r) {
     std::vector<std::string> types;
+    std::vector<int> colours;
     int x = 0;
     for (const auto& item : whole[r]) {
       const int here = x;
@@ -677,11 +726,14 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
         for (const auto& t : types) made += find_stitch_type(t)->top;
         p.cables.push_back({static_cast<int>(p.rows.size()), made, item.over, item.under, item.order});
         types.insert(types.end(), item.over + item.under, "k");
+        colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
       } else {
         types.push_back(item.type);
+        colours.push_back(std::max(item.colour, 0));
       }
     }
     p.rows.push_back(std::move(types));
+    if (!p.palette.empty()) p.colours.push_back(std::move(colours));
     row_line.push_back(rows[r].line);
   }
   check_stacking(p, row_line, source);
@@ -696,9 +748,11 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   for (int period = 1; period < height; ++period) {
     if (height % period != 0) continue;
     bool repeats = true;
-    for (int r = period; r < height && repeats; ++r) repeats = p.rows[r] == p.rows[r % period] && cables_of(r) == cables_of(r % period);
+    for (int r = period; r < height && repeats; ++r)
+      repeats = p.rows[r] == p.rows[r % period] && cables_of(r) == cables_of(r % period) && (p.colours.empty() || p.colours[r] == p.colours[r % period]);
     if (!repeats) continue;
     p.rows.resize(period);
+    if (!p.colours.empty()) p.colours.resize(period);
     p.cables.erase(std::remove_if(p.cables.begin(), p.cables.end(), [&](const PatternCable& c) { return c.row >= period; }), p.cables.end());
     break;
   }

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,13 @@ struct YarnCurves {
   std::vector<int> point_type;           ///< per point, index into type_names
   std::vector<std::string> type_names;   ///< stitch type names ("k", "kp", "cable2x2", "bind-off", "turn")
   double radius = 0;                     ///< yarn radius [mm]
+  /// Yarn colours (colours.hpp): per point an index into `colours`, or empty when the yarn has one colour.
+  std::vector<int> point_colour;
+  struct Colour {
+    std::string name;            ///< the pattern's name for it ("MC", "A")
+    std::array<double, 3> srgb;  ///< 0..1
+  };
+  std::vector<Colour> colours;
 
   int curves() const { return static_cast<int>(curve_start.size()) - 1; }
   int curve_size(int c) const { return curve_start[c + 1] - curve_start[c]; }

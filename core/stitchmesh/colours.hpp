@@ -1,0 +1,49 @@
+#pragma once
+// Yarn colours as pattern designers give them (issue 26, part 3): a palette of named colours ("MC: cream",
+// "colour B: navy #1f2a44") and a colour per stitch. The colours travel from the pattern to the stitch faces
+// and on to the yarn's control points, the pictures and the OBJ and glTF materials.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stitchmesh/yarn_curves.hpp"
+
+namespace skein::mesh {
+
+/// One colour of a pattern's palette.
+struct PatternColour {
+  std::string name;             ///< as the pattern names it, in its case: "A", "MC", "CC1"
+  std::string description;      ///< what the designer wrote after it, without the hex code: "cream", "Navy"
+  std::array<double, 3> srgb{};  ///< 0..1
+  bool operator==(const PatternColour&) const = default;
+};
+
+/// A colour declaration line, as knitting patterns write them: `NAME: DESCRIPTION` or `NAME = DESCRIPTION`,
+/// with `colour`, `color` or `yarn` before NAME (`colour A: cream #f3ead8`); with `prefix_optional` (written
+/// instructions) the usual names alone too: `MC`, `CC`, `CC1` to `CC9` and the letters `A` to `H`.
+/// The colour is the description's `#rrggbb` when it has one, else the first colour word it holds (white, cream,
+/// natural, grey, black, red, navy, ...), else the `index`-th colour of a default palette. Returns nothing when
+/// `line` is no declaration; throws skein::Error (naming `where`) for a declaration that breaks a rule: a
+/// name that is a stitch (k, p, ...) or longer than 8 characters, a `#` code that is not six hex digits.
+std::optional<PatternColour> read_colour_declaration(const std::string& line, bool prefix_optional, int index, const std::string& where);
+
+/// Where a line's `#` comment starts (npos for none): at its first `#` that is not a colour code (`#` and six hex
+/// digits, then no letter or digit), so that `colour A: cream #f0e6cf  # the main colour` keeps its code.
+size_t comment_start(const std::string& line);
+
+/// `#rrggbb` of an sRGB colour (0..1).
+std::string colour_code(const std::array<double, 3>& srgb);
+
+/// The palette index of `name` (case-insensitive), or -1.
+int find_colour(const std::vector<PatternColour>& palette, const std::string& name);
+
+/// Colours the yarn: each control point takes the colour of the stitch face it was emitted in
+/// (`face_colour[point_face]`), a point of no face (a border piece) that of the nearest point along its yarn
+/// that has one. Sets `yarn.point_colour` and `yarn.colours`; with an empty palette it clears them.
+void colour_yarn(YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette);
+
+/// The yarn length of each colour [mm] (the control polygon's, each segment to its first point's colour).
+std::vector<double> yarn_length_by_colour(const YarnCurves& yarn);
+
+}  // namespace skein::mesh
