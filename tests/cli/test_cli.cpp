@@ -981,6 +981,38 @@ TEST(Cli, PatternWritesItselfAsAChartAndAsWrittenInstructions) {
   EXPECT_FALSE(std::filesystem::exists(dir / "s.txt"));
 }
 
+TEST(Cli, PatternInColoursReportsItsYarnAndWritesItsMaterials) {
+  ScratchDir dir;
+  const std::string patterns = SKEIN_PATTERNS_DIR;
+  // The peerie band tiled 2 x 1: the report gives the yarn of each colour; the tubes carry a material each.
+  auto r = run_skein("pattern " + patterns + "/charts/peerie.txt --tile 2x1 -o " + (dir / "p.bcc").string() + " --report " + (dir / "p.json").string() +
+                     " --tubes " + (dir / "p.glb").string() + " --png " + (dir / "p.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = nlohmann::json::parse(slurp(dir / "p.json"));
+  ASSERT_EQ(report.at("colours").size(), 2u);
+  EXPECT_EQ(report["colours"][1]["name"], "CC");
+  EXPECT_EQ(report["colours"][1]["srgb"], "#1f2a44");
+  const double natural = report["colours"][0]["yarn_mm"], navy = report["colours"][1]["yarn_mm"];
+  // 8 of the 42 stitches of a repeat are navy, and the border pieces take the colour beside them.
+  EXPECT_GT(navy, 0.1 * (natural + navy));
+  EXPECT_LT(navy, 0.3 * (natural + navy));
+  EXPECT_TRUE(std::filesystem::exists(dir / "p.glb"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "p.png"));
+  // Relaxed as a periodic patch with a preview: the same colours reported.
+  r = run_skein("pattern " + patterns + "/written/corrugated-rib.txt --relax --no-audit --max-steps 50 -o " + (dir / "c.bcc").string() + " --report " +
+                (dir / "c.json").string() + " --tubes " + (dir / "c.obj").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "c.json")).at("colours").size(), 2u);
+  EXPECT_NE(slurp(dir / "c.mtl").find("newmtl yarn-B"), std::string::npos);
+  // A colour name the pattern never declared is refused with its place, and nothing is written.
+  const auto bad = dir / "bad.knit";
+  std::ofstream(bad) << "format knit\ncolour A: red\nk k\ncolours\nA Z\n";
+  r = run_skein("pattern " + bad.string() + " -o " + (dir / "b.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("bad.knit: line 5, column 3: 'Z' is not a declared colour (A)"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "b.bcc"));
+}
+
 TEST(Cli, AuditWithTheStitchIdsNamesTheStitchesOfEachCrossing) {
   ScratchDir dir;
   const auto project = dir / "s.skein";

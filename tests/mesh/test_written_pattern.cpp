@@ -286,6 +286,8 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
       for (const auto& [text, what] : {std::pair{chart, "chart"}, {instructions, "instructions"}}) {
         const auto back = mesh::parse_pattern(text, "back.txt");
         EXPECT_EQ(back.rows, pattern.rows) << what << ":\n" << text;
+        EXPECT_EQ(back.colours, pattern.colours) << what << ":\n" << text;
+        EXPECT_EQ(back.palette, pattern.palette) << what << ":\n" << text;
         EXPECT_EQ(back.cables.size(), pattern.cables.size()) << what << ":\n" << text;
         for (const auto& c : pattern.cables) EXPECT_NE(std::find(back.cables.begin(), back.cables.end(), c), back.cables.end()) << what << ":\n" << text;
         EXPECT_EQ(back.name, pattern.name);
@@ -401,4 +403,63 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
   EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): Sl1, yo, sl1.\nRow 2: Purl.\n", "e.txt"); }),
             "e.txt: line 1, column 18: a yarn-over has a stitch model beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...) or beside "
             "a plain knit or purl stitch it increases into ('k1, yo', 'yo, p1'); here it has neither");
+}
+
+TEST(PatternColours, DeclaredAsPatternsNameThem) {
+  const auto read = [](const std::string& line, bool bare = true) { return mesh::read_colour_declaration(line, bare, 0, "line 1"); };
+  const auto hex = [](const std::optional<mesh::PatternColour>& c) { return c ? mesh::colour_code(c->srgb) : std::string("none"); };
+  EXPECT_EQ(hex(read("MC: cream")), "#f0e6cf");                             // a colour word
+  EXPECT_EQ(hex(read("Colour A (MC): natural #E9DCC3")), "#e9dcc3");        // a code beats the word
+  EXPECT_EQ(hex(read("CC = Deep Navy Blue")), "#1f2a44");                   // the first colour word it holds
+  EXPECT_EQ(hex(read("colour X2: my own heather", false)), "#f0e6cf");     // no word: the default palette's first
+  EXPECT_EQ(read("Colour B (CC): red #b3261e")->description, "red");
+  EXPECT_EQ(read("Colour B (CC): red #b3261e")->name, "B");
+  EXPECT_FALSE(read("MC: cream", false));  // skein's own formats want the word 'colour'
+  EXPECT_FALSE(read("Multiple of 4 sts plus 2."));
+  EXPECT_FALSE(read("Note: work loosely."));
+  EXPECT_EQ(error_of([&] { read("colour A: red #b326"); }), "line 1: a colour code is # and six hex digits (#f0e6cf), found '#b326'");
+  EXPECT_EQ(error_of([&] { read("colour k: red"); }), "line 1: 'k' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
+  EXPECT_EQ(mesh::comment_start("colour A: cream #f0e6cf  # the main colour"), 25u);
+  EXPECT_EQ(mesh::comment_start("k p #f0e6cfx"), 4u);
+}
+
+TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
+  const auto p = mesh::parse_pattern(
+      "format knit\ncolour MC: cream #f0e6cf  # main\ncolour CC: red\np cable2x2+ p\nk k k k k k\ncolours\nMC CC CC CC CC MC\nCC\n", "c.knit");
+  ASSERT_EQ(p.palette.size(), 2u);
+  EXPECT_EQ(mesh::colour_code(p.palette[0].srgb), "#f0e6cf");
+  EXPECT_EQ(p.colours, (std::vector<std::vector<int>>{{1, 1, 1, 1, 1, 1}, {0, 1, 1, 1, 1, 0}}));  // bottom row first; the cable's four faces each
+  // The faces of a tiling, in pattern_stitch_mesh's order: row by row, each row's repeats left to right.
+  const auto faces = mesh::pattern_face_colours(p, 2, 1);
+  ASSERT_EQ(faces.size(), mesh::pattern_stitch_mesh(p, 2, 1).faces.size());
+  EXPECT_EQ(faces, (std::vector<int>{1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 0, 0, 1, 1, 1, 1, 0}));
+  EXPECT_TRUE(mesh::pattern_face_colours(mesh::parse_pattern("format knit\nk p\n", "p.knit"), 2, 2).empty());
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "c.knit"); }); };
+  EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA B\n"), "c.knit: line 5, column 3: 'B' is not a declared colour (A)");
+  EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA A A\n"),
+            "c.knit: line 5: gives 3 colours for row 1 (line 3), which has 2 stitches (a cable's each): one colour per stitch, or one for the whole row");
+  EXPECT_EQ(error("format knit\ncolour A: red\nk k\nk k\ncolours\nA\n"), "c.knit: line 6: the colours block has 1 lines but the pattern 2 rows");
+  EXPECT_EQ(error("format knit\nk k\ncolours\nA\n"), "c.knit: line 3: 'colours' with no colour declared: declare them first ('colour A: cream')");
+  EXPECT_EQ(error("format knit\ncolour A: red\ncolour a: blue\nk k\n"), "c.knit: line 3: colour 'a' is declared twice");
+  EXPECT_EQ(error("format knit\nk k\ncolour A: red\n"), "c.knit: line 3: a colour declaration after the rows: declare the colours first");
+}
+
+TEST(PatternColours, WrittenInstructionsSayTheColourAsKnittersDo) {
+  // "With CC" holds for the rows after it until another colour is named; "k2 B" colours those stitches alone.
+  const auto stripes = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/garter-stripes.txt");
+  ASSERT_EQ(stripes.height(), 8);  // four rows of each colour: not the two-row garter repeat
+  for (int r = 0; r < 8; ++r) EXPECT_EQ(stripes.colours[r], std::vector<int>{r < 4 ? 0 : 1}) << "row " << r + 1;
+  const auto rib = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/corrugated-rib.txt");
+  EXPECT_EQ(rib.rows, (std::vector<std::vector<std::string>>{{"p", "p", "k", "k"}}));  // the WS row is the RS row seen from the front
+  EXPECT_EQ(rib.colours, (std::vector<std::vector<int>>{{0, 0, 1, 1}}));               // knits in B, purls in A
+  // "with CC" in round 1 holds into round 2; rounds are worked right to left as seen from the front.
+  const auto p = mesh::parse_pattern("MC: white\nCC: black\nRnd 1: k1, with CC, k1, k1 in MC, k1.\nRnd 2: k2 MC, k1 CC, k1.\n", "w.txt");
+  EXPECT_EQ(p.colours, (std::vector<std::vector<int>>{{1, 0, 1, 0}, {1, 1, 0, 0}}));
+  // Without a palette, a colour name is an unknown abbreviation, as before.
+  EXPECT_NE(error_of([] { mesh::parse_pattern("Rnd 1: k1 CC, k1.\n", "w.txt"); }).find("unknown abbreviation 'cc'"), std::string::npos);
+  // The peerie chart: 'X' is keyed "k1 CC", the rest the main colour; charts are drawn as seen from the front.
+  const auto peerie = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/peerie.txt");
+  ASSERT_EQ(peerie.height(), 7);
+  EXPECT_EQ(peerie.colours[3], (std::vector<int>{1, 0, 0, 0, 1, 0}));
+  EXPECT_EQ(peerie.colours[0], (std::vector<int>(6, 0)));
 }

@@ -242,3 +242,40 @@ TEST(YarnIo, GltfTubesReadBackAsTheObjTubesInMetres) {
     EXPECT_EQ(mesh::load_mesh(dir / name).num_faces(), 2 * obj.num_faces());
   }
 }
+
+TEST(YarnIo, YarnInColoursGetsAMaterialPerColourInObjAndGltf) {
+  // The peerie chart tiled 2 x 1: its navy diamonds on natural, each colour a material with its linear colour.
+  ScratchDir dir;
+  const auto pattern = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/peerie.txt");
+  ASSERT_EQ(pattern.palette.size(), 2u);
+  auto y = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 2, 1), mesh::StitchLibrary::bundled(), {});
+  mesh::colour_yarn(y, mesh::pattern_face_colours(pattern, 2, 1), pattern.palette);
+  relax::write_tube_obj(y, dir / "t.obj", {6, 2});
+  const std::string mtl = bytes(dir / "t.mtl"), obj = bytes(dir / "t.obj");
+  EXPECT_NE(obj.find("mtllib t.mtl\n"), std::string::npos);
+  EXPECT_NE(mtl.find("newmtl yarn-MC\nKd 0.8148 0.7157 0.5457\n"), std::string::npos) << mtl;  // #e9dcc3, linear
+  EXPECT_NE(mtl.find("newmtl yarn-CC\n"), std::string::npos) << mtl;
+  EXPECT_NE(obj.find("usemtl yarn-MC\n"), std::string::npos);
+  EXPECT_NE(obj.find("usemtl yarn-CC\n"), std::string::npos);
+  // The OBJ's faces are the one-colour tubes' faces, shared out between the two materials.
+  mesh::YarnCurves plain = y;
+  plain.point_colour.clear();
+  plain.colours.clear();
+  relax::write_tube_obj(plain, dir / "p.obj", {6, 2});
+  EXPECT_FALSE(std::filesystem::exists(dir / "p.mtl"));
+  EXPECT_EQ(mesh::load_mesh(dir / "t.obj").num_faces(), mesh::load_mesh(dir / "p.obj").num_faces());
+  relax::write_tube_gltf(y, dir / "t.glb", {6, 2});
+  tinygltf::Model model;
+  std::string error, warning;
+  ASSERT_TRUE(tinygltf::TinyGLTF().LoadBinaryFromFile(&model, &error, &warning, (dir / "t.glb").string())) << error;
+  ASSERT_EQ(model.materials.size(), 2u);
+  ASSERT_EQ(model.meshes.at(0).primitives.size(), 2u);
+  size_t triangles = 0;
+  for (const auto& primitive : model.meshes[0].primitives) {
+    EXPECT_GE(primitive.material, 0);
+    triangles += model.accessors[primitive.indices].count / 3;
+  }
+  EXPECT_EQ(model.materials[1].name, "yarn-CC");
+  EXPECT_NEAR(model.materials[1].pbrMetallicRoughness.baseColorFactor[2], 0.0578, 1e-3);  // navy #1f2a44's blue, linear
+  EXPECT_EQ(static_cast<int>(triangles), 2 * mesh::load_mesh(dir / "p.obj").num_faces());
+}
