@@ -1077,9 +1077,11 @@ int run_command_line(int argc, char** argv) {
                                    {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
         yarn = std::move(patch.yarn);
         targets.periodic = std::move(patch.map);
-        if (pattern.format != mesh::PatternFormat::Woven) mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, patch.tiles, patch.tiles), pattern.palette);
+        if (pattern.format != mesh::PatternFormat::Woven)  // a woven patch comes coloured (periodic_woven_patch)
+          mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, patch.tiles, patch.tiles), pattern.palette);
       } else if (pattern.format == mesh::PatternFormat::Woven) {
         yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius);
+        mesh::colour_woven_yarn(yarn, pattern, across, up);
       } else {
         const auto stitch_mesh = mesh::pattern_stitch_mesh(pattern, across, up, pat_size);
         mesh::EmitOptions emit;
@@ -1100,9 +1102,9 @@ int run_command_line(int argc, char** argv) {
                              {"srgb", mesh::colour_code(pattern.palette[k].srgb)}, {"yarn_mm", k < length.size() ? length[k] : 0.0}});
         return colours;
       };
-      const auto color = pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn
-                         : pattern.palette.empty()                    ? render::YarnColor::StitchType
-                                                                      : render::YarnColor::Colour;
+      const auto color = !pattern.palette.empty()                        ? render::YarnColor::Colour
+                         : pattern.format == mesh::PatternFormat::Woven ? render::YarnColor::Yarn
+                                                                        : render::YarnColor::StitchType;
       if (!pattern.palette.empty()) pat_extra["colours"] = colour_report(yarn);
       if (!pat_tubes.empty()) check_writable(pat_tubes);
       if (pat_relax) {
@@ -1153,7 +1155,8 @@ int run_command_line(int argc, char** argv) {
           auto tiled = pattern.format == mesh::PatternFormat::Woven
                            ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
                            : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
-          if (pattern.format != mesh::PatternFormat::Woven) mesh::colour_yarn(tiled, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
+          if (pattern.format == mesh::PatternFormat::Woven) mesh::colour_woven_yarn(tiled, pattern, across, up);
+          else mesh::colour_yarn(tiled, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
           const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
           out.radius = compressed ? radius : out.radius / pat_gamma;

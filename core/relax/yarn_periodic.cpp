@@ -178,6 +178,7 @@ PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing,
   PeriodicPatch patch;
   patch.tiles = 2 * rings + 3;
   patch.yarn = mesh::woven_yarn(pattern, patch.tiles, patch.tiles, spacing, radius);
+  mesh::colour_woven_yarn(patch.yarn, pattern, patch.tiles, patch.tiles);  // before the frozen ends are cut off
   patch.period_x = {pattern.width() * spacing, 0, 0};
   patch.period_y = {0, pattern.height() * spacing, 0};
   // Crossings lie on the grid of yarns; the yarns' ends beyond the last crossing belong to no repeat.

@@ -214,6 +214,8 @@ mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>&
   mesh::YarnCurves out;
   out.radius = in.radius;
   out.type_names = in.type_names;
+  out.colours = in.colours;
+  const bool coloured = in.point_colour.size() == in.points.size();
   index.assign(n, -1);
   for (int c = 0; c < in.curves(); ++c) {
     const int begin = in.curve_start[c], end = in.curve_start[c + 1];
@@ -230,6 +232,7 @@ mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>&
           out.points.push_back(in.points[p]);
           out.point_face.push_back(in.point_face[p]);
           out.point_type.push_back(in.point_type[p]);
+          if (coloured) out.point_colour.push_back(in.point_colour[p]);
         }
         out.curve_start.push_back(static_cast<int>(out.points.size()));
         out.closed.push_back(closed);

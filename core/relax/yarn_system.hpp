@@ -75,7 +75,7 @@ YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves,
 
 /// The curves with only the points where `keep` is set: a curve is cut where it loses points (a closed curve
 /// that loses some opens there, just after a lost point) and pieces of fewer than two points are dropped; the
-/// pieces keep their order. `index`: per input point its index in the result, or -1.
+/// pieces keep their order, and the points their faces, types and colours. `index`: per input point its index in the result, or -1.
 mesh::YarnCurves cut_curves(const mesh::YarnCurves& curves, const std::vector<char>& keep, std::vector<int>& index);
 
 /// Points that are not `placed` move as the nearest placed point of their yarn (by count of points along it,

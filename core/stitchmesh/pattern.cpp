@@ -493,6 +493,19 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
   return out;
 }
 
+void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int up) {
+  if (pattern.palette.empty() || pattern.weft_colours.empty() || pattern.warp_colours.empty()) return;
+  const int rows = up * pattern.height();
+  if (yarn.curves() != rows + across * pattern.width()) throw Error("", "pattern " + pattern.name, "the yarn is not its woven yarn at this tiling");
+  yarn.colours.clear();
+  for (const auto& c : pattern.palette) yarn.colours.push_back({c.name, c.srgb});
+  yarn.point_colour.assign(yarn.points.size(), 0);
+  for (int c = 0; c < yarn.curves(); ++c) {
+    const int colour = c < rows ? pattern.weft_colours[c % pattern.height()] : pattern.warp_colours[(c - rows) % pattern.width()];
+    std::fill(yarn.point_colour.begin() + yarn.curve_start[c], yarn.point_colour.begin() + yarn.curve_start[c + 1], colour);
+  }
+}
+
 YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius) {
   if (pattern.format != PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is knitted: its yarn comes from its stitch mesh");
   if (across < 1 || up < 1 || across > 4096 || up > 4096)

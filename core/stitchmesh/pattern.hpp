@@ -40,6 +40,8 @@ struct Pattern {
   /// index into it. Both empty for a pattern in one colour.
   std::vector<PatternColour> palette;
   std::vector<std::vector<int>> colours;
+  /// Wovens in colour (WIF drafts): each weft row's and each warp column's index into the palette; empty for none.
+  std::vector<int> weft_colours, warp_colours;
 
   int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
   int height() const;  ///< rows or weft yarns in one repeat
@@ -64,6 +66,10 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
 
 /// The palette index of each face of pattern_stitch_mesh(pattern, across, up); empty for a pattern in one colour.
 std::vector<int> pattern_face_colours(const Pattern& pattern, int across, int up);
+
+/// Colours woven yarn made by woven_yarn(pattern, across, up) (wefts first, then warps) by the pattern's weft and warp
+/// colours; does nothing for a pattern in one colour.
+void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int up);
 
 /// Whether tiling the knit pattern re-meshes the stitches it covers (its rows have increases, decreases or
 /// lace, or it has cables) instead of repainting plain stitches (tile_pattern).

@@ -1,6 +1,7 @@
 #include "stitchmesh/wif_pattern.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "common/error.hpp"
@@ -128,6 +130,34 @@ bool truthy(const std::string& v) {
   return l == "true" || l == "yes" || l == "on" || l == "1";
 }
 
+/// The [COLOR TABLE]'s colours by index (sRGB 0..1), each `R,G,B` on the [COLOR PALETTE]'s Range (0,255 unless
+/// it says otherwise); empty when the draft has no table.
+std::map<int, std::array<double, 3>> wif_colours(const Sections& s, const std::string& source) {
+  std::map<int, std::array<double, 3>> out;
+  const auto* list = s.find("color table");
+  if (!list) return out;
+  int low = 0, high = 255;
+  if (const Entry* range = s.value("color palette", "range")) {
+    const auto comma = range->value.find(',');
+    if (comma == std::string::npos) throw Error(source, line_at(range->line), "[COLOR PALETTE] Range is LOW,HIGH (0,255), found '" + range->value + "'");
+    low = number(trim(range->value.substr(0, comma)), 0, 65535, "[COLOR PALETTE] Range's low end", source, range->line);
+    high = number(trim(range->value.substr(comma + 1)), low + 1, 65535, "[COLOR PALETTE] Range's high end", source, range->line);
+  }
+  for (const auto& e : *list) {
+    const int index = number(e.key, 1, kMostThreads, "[COLOR TABLE] colour", source, e.line);
+    std::vector<std::string> parts;
+    std::istringstream in(e.value);
+    for (std::string part; std::getline(in, part, ',');) parts.push_back(trim(part));
+    if (parts.size() != 3) throw Error(source, line_at(e.line), "[COLOR TABLE] colour " + e.key + " is R,G,B, found '" + e.value + "'");
+    std::array<double, 3> rgb{};
+    for (size_t k = 0; k < 3; ++k)
+      rgb[k] = (number(parts[k], low, high, "[COLOR TABLE] colour " + e.key + "'s channel", source, e.line) - low) / double(high - low);
+    if (out.count(index)) throw Error(source, line_at(e.line), "[COLOR TABLE] gives colour " + e.key + " twice");
+    out[index] = rgb;
+  }
+  return out;
+}
+
 /// The smallest p such that every element equals the one p further on (the repeat of a draft, its last repeat
 /// possibly cut short): n less the longest proper prefix that is also a suffix (Knuth-Morris-Pratt), in O(n)
 /// comparisons of elements.
@@ -206,16 +236,53 @@ Pattern parse_wif_pattern(const std::string& text, const std::string& source) {
     }
   }
 
-  // The smallest repeat up (rows) and across (columns).
-  const int up = smallest_period(over);
-  std::vector<std::vector<char>> columns(warps, std::vector<char>(up));
-  for (int t = 0; t < warps; ++t)
-    for (int pick = 0; pick < up; ++pick) columns[t][pick] = over[pick][t];
+  // Colours (issue 26): each thread's [WARP COLORS] / [WEFT COLORS] entry, else its section's Color=, an index
+  // of the [COLOR TABLE]; 0 where the draft gives none.
+  const auto colours = wif_colours(s, source);
+  std::vector<int> warp_colour(warps, 0), weft_colour(picks, 0);
+  for (const auto& [section, name, threads, out] : {std::tuple{"warp", "WARP", warps, &warp_colour}, std::tuple{"weft", "WEFT", picks, &weft_colour}}) {
+    const int high = colours.empty() ? kMostThreads : colours.rbegin()->first;
+    if (const Entry* e = s.value(section, "color")) std::fill(out->begin(), out->end(), number(e->value, 1, high, "[" + std::string(name) + "] Color", source, e->line));
+    if (s.find(std::string(section) + " colors"))
+      for (const auto& [thread, colour] : table(s, std::string(section) + " colors", threads, high, "thread", "colour", source))
+        if (!colour.empty()) (*out)[thread - 1] = *colour.begin();
+    for (const int c : *out)
+      if (c > 0 && !colours.count(c))
+        throw Error(source, "", "[" + std::string(name) + "] threads use colour " + std::to_string(c) + ", which the [COLOR TABLE] does not give");
+  }
+
+  // The smallest repeat up (rows) and across (columns), colours included (a colour order can repeat less often
+  // than the weave).
+  std::vector<std::pair<std::vector<char>, int>> rows(picks);
+  for (int pick = 0; pick < picks; ++pick) rows[pick] = {over[pick], weft_colour[pick]};
+  const int up = smallest_period(rows);
+  std::vector<std::pair<std::vector<char>, int>> columns(warps, {std::vector<char>(up), 0});
+  for (int t = 0; t < warps; ++t) {
+    for (int pick = 0; pick < up; ++pick) columns[t].first[pick] = over[pick][t];
+    columns[t].second = warp_colour[t];
+  }
   const int across = smallest_period(columns);
   if (up > kLongestRepeat || across > kLongestRepeat)
     throw Error(source, "", "the draft's smallest repeat is " + std::to_string(across) + " threads x " + std::to_string(up) +
                                 " picks; skein relaxes woven repeats up to " + std::to_string(kLongestRepeat) + " x " + std::to_string(kLongestRepeat));
   for (int pick = 0; pick < up; ++pick) p.over.emplace_back(over[pick].begin(), over[pick].begin() + across);
+  if (std::any_of(warp_colour.begin(), warp_colour.end(), [](int c) { return c > 0; }) ||
+      std::any_of(weft_colour.begin(), weft_colour.end(), [](int c) { return c > 0; })) {
+    // The palette: the table's colours the repeat uses, in table order, named by their index; a thread of no
+    // colour takes the first of them.
+    std::set<int> used;
+    for (int t = 0; t < across; ++t) used.insert(warp_colour[t]);
+    for (int pick = 0; pick < up; ++pick) used.insert(weft_colour[pick]);
+    used.erase(0);
+    std::map<int, int> index;
+    for (const int c : used) {
+      index[c] = static_cast<int>(p.palette.size());
+      p.palette.push_back({"C" + std::to_string(c), "WIF colour " + std::to_string(c), colours.at(c)});
+    }
+    const auto of = [&](int c) { return c > 0 ? index.at(c) : 0; };
+    for (int t = 0; t < across; ++t) p.warp_colours.push_back(of(warp_colour[t]));
+    for (int pick = 0; pick < up; ++pick) p.weft_colours.push_back(of(weft_colour[pick]));
+  }
   return p;
 }
 

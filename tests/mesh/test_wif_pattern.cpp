@@ -144,3 +144,34 @@ TEST(WifPattern, TheCorpusDraftsWeaveTheBundledCloths) {
     EXPECT_FALSE(mesh::read_pattern(entry.path()).name.empty());
   }
 }
+
+TEST(WifPattern, ColoursOfWarpAndWeftComeFromTheColourTable) {
+  // twill-2-2.wif: the warp all colour 2 (navy), the weft colour 1 (white); the weave's repeat stays 4 x 4.
+  const auto twill = mesh::read_pattern(std::filesystem::path(SKEIN_PATTERNS_DIR) / "wif" / "twill-2-2.wif");
+  ASSERT_EQ(twill.palette.size(), 2u);
+  EXPECT_EQ(mesh::colour_code(twill.palette[0].srgb), "#ffffff");
+  EXPECT_EQ(mesh::colour_code(twill.palette[1].srgb), "#000080");
+  EXPECT_EQ(twill.warp_colours, (std::vector<int>{1, 1, 1, 1}));
+  EXPECT_EQ(twill.weft_colours, (std::vector<int>{0, 0, 0, 0}));
+  // Houndstooth: the same twill with four dark and four light threads each way (a 0..65535 range): the colour
+  // order doubles the repeat to 8 x 8, and the woven yarn carries the colours thread by thread.
+  const auto tooth = mesh::read_pattern(std::filesystem::path(SKEIN_PATTERNS_DIR) / "wif" / "houndstooth.wif");
+  EXPECT_EQ(tooth.width(), 8);
+  EXPECT_EQ(tooth.height(), 8);
+  EXPECT_EQ(mesh::colour_code(tooth.palette[0].srgb), "#0f0f11");
+  EXPECT_EQ(tooth.warp_colours, (std::vector<int>{0, 0, 0, 0, 1, 1, 1, 1}));
+  EXPECT_EQ(tooth.weft_colours, (std::vector<int>{0, 0, 0, 0, 1, 1, 1, 1}));
+  auto yarn = mesh::woven_yarn(tooth, 2, 1, 2.0, 0.3);
+  mesh::colour_woven_yarn(yarn, tooth, 2, 1);
+  ASSERT_EQ(yarn.curves(), 8 + 16);
+  EXPECT_EQ(yarn.point_colour[yarn.curve_start[5]], 1);   // weft 6: light
+  EXPECT_EQ(yarn.point_colour[yarn.curve_start[8 + 13]], 1);  // warp 14 (of the second repeat's 5 to 8): light
+  EXPECT_EQ(yarn.point_colour[yarn.curve_start[8 + 9]], 0);   // warp 10: dark
+  // A colour the table lacks, and a table entry that is not R,G,B, are refused naming the rule.
+  const std::string draft = kHeader + straight_threading(4, 4) + "[TIEUP]\n1=1,2\n2=2,3\n3=3,4\n4=4,1\n[TREADLING]\n1=1\n2=2\n3=3\n4=4\n";
+  EXPECT_EQ(error_in(draft + "[COLOR TABLE]\n1=0,0,0\n[WARP]\nColor=2\n"), "draft.wif: line 22: [WARP] Color 2 is outside 1 to 1");
+  EXPECT_EQ(error_in(draft + "[COLOR TABLE]\n1=0,0\n"), "draft.wif: line 20: [COLOR TABLE] colour 1 is R,G,B, found '0,0'");
+  EXPECT_EQ(error_in(draft + "[COLOR TABLE]\n1=0,0,300\n"), "draft.wif: line 20: [COLOR TABLE] colour 1's channel 300 is outside 0 to 255");
+  EXPECT_EQ(error_in(draft + "[COLOR TABLE]\n1=0,0,0\n3=1,1,1\n[WEFT COLORS]\n2=2\n"),
+            "draft.wif: [WEFT] threads use colour 2, which the [COLOR TABLE] does not give");
+}
