@@ -148,7 +148,7 @@ int run_command_line(int argc, char** argv) {
 
   // skein yarn
   auto* yarn_cmd = app.add_subcommand("yarn", "emit yarn curves from a stitch mesh (.bcc or OBJ polylines)");
-  std::string yarn_in, yarn_out, yarn_tubes, yarn_png, yarn_color = "type", stitches_dir;
+  std::string yarn_in, yarn_out, yarn_tubes, yarn_png, yarn_color, stitches_dir;
   double yarn_radius = 0;
   yarn_cmd->add_option("PROJECT", yarn_in, ".skein project with a stitch mesh")->required();
   yarn_cmd->add_option("-o,--output", yarn_out, "yarn to write: .bcc (Catmull-Rom curves) or .obj (polylines)")->required();
@@ -163,7 +163,8 @@ int run_command_line(int argc, char** argv) {
   FabricChoice yarn_fabric;
   add_fabric(yarn_cmd, yarn_fabric, "sets the yarn radius", false);
   yarn_cmd->add_option("--png", yarn_png, "picture of the yarn as shaded tubes");
-  yarn_cmd->add_option("--color", yarn_color, "tube colour: type or yarn")->check(CLI::IsMember({"type", "yarn"}));
+  yarn_cmd->add_option("--color", yarn_color, "tube colour: type (stitch type), yarn (one per yarn) or colour (the yarn's own; the default when it has them, else type)")
+      ->check(CLI::IsMember({"type", "yarn", "colour"}));
   yarn_cmd->add_option("--stitches", stitches_dir, "stitch library folder (default: the bundled stitches/)");
 
   // skein relax-mesh
@@ -516,8 +517,8 @@ int run_command_line(int argc, char** argv) {
   render_cmd->add_option("-o,--output", render_out, "PNG to write")->required();
   render_cmd->add_flag("--yarn", render_yarn, "draw the project's yarn as tubes instead of its stitch mesh");
   render_cmd->add_option("--yarn-radius", render_radius, "yarn radius [mm] for --yarn (default: a tenth of the stitch width)");
-  render_cmd->add_option("--color", render_color, "row or type for stitch meshes; type or yarn for yarn")
-      ->check(CLI::IsMember({"row", "type", "yarn"}));
+  render_cmd->add_option("--color", render_color, "row, type or colour (the yarn's colours, patterns/FORMAT.md) for stitch meshes; type, yarn or colour for yarn")
+      ->check(CLI::IsMember({"row", "type", "yarn", "colour"}));
   std::string render_views = "garment";
   render_cmd->add_option("--views", render_views, "garment (three-quarter front, back-side), flat (front, back) or three (front, back, three-quarter)")
       ->check(CLI::IsMember({"garment", "flat", "three"}));
@@ -708,12 +709,17 @@ int run_command_line(int argc, char** argv) {
       check_writable(render_out);
       if (render_yarn || is_bcc(render_in)) {
         render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out,
-                          render_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType, render_views);
+                          render_color == "yarn"     ? render::YarnColor::Yarn
+                          : render_color == "colour" ? render::YarnColor::Colour
+                                                     : render::YarnColor::StitchType,
+                          render_views);
         return 0;
       }
       const auto project = mesh::read_project(render_in);
       if (!project.stitch) throw Error(render_in, "", "holds no stitch mesh to draw");
-      render_stitch_mesh(*project.stitch, render_out, render_color == "type" ? render::ColorBy::StitchType : render::ColorBy::Row, render_views);
+      render_stitch_mesh(*project.stitch, render_out,
+                         render_color == "type" ? render::ColorBy::StitchType : render_color == "colour" ? render::ColorBy::Colour : render::ColorBy::Row,
+                         render_views);
       return 0;
     }
     if (*relax_cmd) {
@@ -779,7 +785,10 @@ int run_command_line(int argc, char** argv) {
         relax::write_point_ids(yarn, *mesh::read_project(yarn_in).stitch, yarn_ids);
         spdlog::info("wrote {}", yarn_ids);
       }
-      if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png, yarn_color == "yarn" ? render::YarnColor::Yarn : render::YarnColor::StitchType);
+      if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png,
+                                               yarn_color == "yarn"   ? render::YarnColor::Yarn
+                                               : yarn_color == "type" ? render::YarnColor::StitchType
+                                                                      : own_colours(yarn));
       return 0;
     }
     if (*ry) {
@@ -888,7 +897,7 @@ int run_command_line(int argc, char** argv) {
                                         {"last_boundary_move_r", local.last_boundary_move}, {"splice_crossings", local.splice_crossings}}},
                         {"yarn", yarn_json(out)}},
                        ry_report);
-          if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+          if (!ry_png.empty()) render_yarn_tubes(out, ry_png, own_colours(out), ry_views);
           return local.stopped_by == "diverged" ? 1 : 0;
         }
         spdlog::warn("warm start: the splice would pass yarn through yarn at {} places; relaxing the whole garment from its emission instead",
@@ -935,7 +944,7 @@ int run_command_line(int argc, char** argv) {
                       {"yarn", yarn_json(out)}},
                      ry_report);
         }
-        if (!ry_png.empty()) render_yarn_tubes(out, ry_png, render::YarnColor::StitchType, ry_views);
+        if (!ry_png.empty()) render_yarn_tubes(out, ry_png, own_colours(out), ry_views);
         return 0;
       }
       const auto make_system = [&](double take_up) {
@@ -975,7 +984,7 @@ int run_command_line(int argc, char** argv) {
       ry_options.interrupt = install_interrupt_handlers();
       const json report = relax_and_write(yarn, system, targets, ry_options, state,
                                           {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr)),
-                                           ry_extra, 900, render::YarnColor::StitchType, 1, ry_radius_out, {}, {}});
+                                           ry_extra, 900, own_colours(yarn), 1, ry_radius_out, {}, {}});
       if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
       return exit_status(report);
     }
@@ -1030,7 +1039,7 @@ int run_command_line(int argc, char** argv) {
         *project.stitch = mesh::tile_pattern(*project.stitch, faces, pattern, pat_face, &tiled);
         mesh::write_project(project, pat_out);
         write_chart();
-        if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, render::ColorBy::StitchType);
+        if (!pat_png.empty()) render_stitch_mesh(*project.stitch, pat_png, pattern.palette.empty() ? render::ColorBy::StitchType : render::ColorBy::Colour);
         if (tiled.repeats > 0)
           spdlog::info("tiled {} from face {}: {} whole {} x {} repeats re-meshed ({} of the {} chosen stitches); wrote {}", pattern.name, pat_face,
                        tiled.repeats, pattern.width(), pattern.height(), tiled.stitches, faces.size(), pat_out);
@@ -1077,8 +1086,6 @@ int run_command_line(int argc, char** argv) {
                                    {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
         yarn = std::move(patch.yarn);
         targets.periodic = std::move(patch.map);
-        if (pattern.format != mesh::PatternFormat::Woven)  // a woven patch comes coloured (periodic_woven_patch)
-          mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, patch.tiles, patch.tiles), pattern.palette);
       } else if (pattern.format == mesh::PatternFormat::Woven) {
         yarn = mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius);
         mesh::colour_woven_yarn(yarn, pattern, across, up);
@@ -1087,7 +1094,6 @@ int run_command_line(int argc, char** argv) {
         mesh::EmitOptions emit;
         emit.yarn_radius = sim_radius;
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
-        mesh::colour_yarn(yarn, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
         targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
         ids_mesh = stitch_mesh;
       }
@@ -1156,7 +1162,6 @@ int run_command_line(int argc, char** argv) {
                            ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
                            : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
           if (pattern.format == mesh::PatternFormat::Woven) mesh::colour_woven_yarn(tiled, pattern, across, up);
-          else mesh::colour_yarn(tiled, mesh::pattern_face_colours(pattern, across, up), pattern.palette);
           const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
           out.radius = compressed ? radius : out.radius / pat_gamma;

@@ -169,6 +169,10 @@ void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool prev
   else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
 }
 
+render::YarnColor own_colours(const mesh::YarnCurves& yarn) {
+  return yarn.point_colour.empty() ? render::YarnColor::StitchType : render::YarnColor::Colour;
+}
+
 void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale, const std::string& unit) {
   const auto ext = fs::path(path).extension();
   if (ext == ".glb" || ext == ".gltf") return relax::write_tube_gltf(yarn, path);  // metres, whatever the scale

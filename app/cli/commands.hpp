@@ -102,6 +102,9 @@ mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string&
 /// Writes yarn as .bcc or .obj polylines, by the extension; `preview` marks it as placed for a preview, not
 /// relaxed (relax::write_bcc).
 void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
+/// How a yarn picture is coloured unless asked otherwise: in the yarn's own colours when it has them
+/// (patterns/FORMAT.md, "Colour"), else by stitch type.
+render::YarnColor own_colours(const mesh::YarnCurves& yarn);
 /// Writes the yarn's tubes for any renderer: glTF 2.0 when `path` ends in .glb or .gltf (in metres), else OBJ with
 /// its coordinates times `scale`, said to be in `unit`; yarn in colours gets a material per colour (a .mtl beside the OBJ).
 void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale = 1, const std::string& unit = "mm");

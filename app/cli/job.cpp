@@ -467,7 +467,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       if (!job.yarn_weight.empty()) written.radius = job.yarn_radius;
       write_yarn(written, run.out("yarn.bcc"));
       run.report()["yarn"] = yarn_json(written);
-      if (job.pictures) render_yarn_tubes(written, run.out("yarn.png"), render::YarnColor::StitchType);
+      if (job.pictures) render_yarn_tubes(written, run.out("yarn.png"), own_colours(written));
     });
     if (!job.relax_yarn) {
       run.finish("done");

@@ -187,7 +187,8 @@ void MainWindow::build_actions() {
   auto* colorings = new QActionGroup(this);
   for (auto [text, name, coloring] : {std::tuple{tr("Colour by stitch &type"), "colorType", Coloring::StitchType},
                                       std::tuple{tr("Colour by &row"), "colorRow", Coloring::Row},
-                                      std::tuple{tr("Colour by s&tretch"), "colorStretch", Coloring::Stretch}}) {
+                                      std::tuple{tr("Colour by s&tretch"), "colorStretch", Coloring::Stretch},
+                                      std::tuple{tr("Colour by &yarn colour"), "colorYarn", Coloring::YarnColour}}) {
     auto* a = add(view, text, name, [this, coloring = coloring] { set_coloring(coloring); });
     a->setCheckable(true);
     a->setData(static_cast<int>(coloring));

@@ -116,6 +116,8 @@ std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Colorin
   for (size_t f = 0; f < stitch.faces.size(); ++f) {
     if (coloring == Coloring::StitchType) colors[f] = render::stitch_color(stitch.faces[f].type);
     if (coloring == Coloring::Row) colors[f] = render::row_color(stitch.faces[f].row);
+    if (coloring == Coloring::YarnColour)
+      colors[f] = stitch.palette.empty() ? render::stitch_color(stitch.faces[f].type) : render::linear_color(stitch.palette.at(static_cast<size_t>(stitch.faces[f].colour)).srgb);
     if (!strain.empty()) colors[f] = render::strain_color(strain[f]);
   }
   return colors;
@@ -144,7 +146,8 @@ Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail, int max_
   Geometry g;
   if (static_cast<int>(yarn.points.size()) <= max_tube_points) {
     const bool full = detail == YarnDetail::Full;
-    for (const auto& polygon : render::yarn_polygons(yarn, render::YarnColor::StitchType, full ? 6 : 4, full ? 2 : 1)) {
+    const auto color = yarn.point_colour.empty() ? render::YarnColor::StitchType : render::YarnColor::Colour;  // yarn in colours shows them
+    for (const auto& polygon : render::yarn_polygons(yarn, color, full ? 6 : 4, full ? 2 : 1)) {
       std::vector<int> loop(polygon.points.size());
       for (size_t k = 0; k < loop.size(); ++k) loop[k] = static_cast<int>(k);
       add_polygon(g, polygon.points, loop, polygon.color);

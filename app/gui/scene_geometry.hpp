@@ -26,7 +26,7 @@ struct Geometry {
 };
 
 enum class Layer { Input, Stitch, Yarn };
-enum class Coloring { StitchType, Row, Stretch };
+enum class Coloring { StitchType, Row, Stretch, YarnColour };
 
 /// The input mesh with its labels (Yuksel 2012 Fig. 11): faces tinted by row (grey when unlabeled, red when
 /// they break a labeling rule), course edges dark, wale edges in their row's colour (orange when marked for

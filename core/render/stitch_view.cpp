@@ -41,13 +41,20 @@ Eigen::Vector3f stitch_color(const std::string& type) {
   return {0.3f, 0.55f, 0.9f};                                                          // x, s, sk
 }
 
+Eigen::Vector3f linear_color(const std::array<double, 3>& srgb) {
+  Eigen::Vector3f out;
+  for (int k = 0; k < 3; ++k) out[k] = linear_of_byte(static_cast<unsigned>(std::lround(std::clamp(srgb[k], 0.0, 1.0) * 255)));
+  return out;
+}
+
 std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, ColorBy color) {
   std::vector<Polygon> out;
   out.reserve(mesh.faces.size());
   for (const auto& f : mesh.faces) {
     Polygon p;
     for (int v : f.vertices) p.points.push_back(mesh.vertices[v]);
-    p.color = color == ColorBy::Row ? row_color(f.row) : stitch_color(f.type);
+    if (color == ColorBy::Colour && !mesh.palette.empty()) p.color = linear_color(mesh.palette.at(static_cast<size_t>(f.colour)).srgb);
+    else p.color = color == ColorBy::Row ? row_color(f.row) : stitch_color(f.type);
     out.push_back(std::move(p));
   }
   return out;

@@ -9,13 +9,18 @@
 
 namespace skein::render {
 
-enum class ColorBy { Row, StitchType };
+/// What a stitch face's colour shows: its row, its stitch type, or its yarn's colour (the mesh's palette; as
+/// StitchType for a mesh without one).
+enum class ColorBy { Row, StitchType, Colour };
 
 /// A distinct colour per row index (golden-ratio hue steps, so neighbouring rows differ).
 Eigen::Vector3f row_color(int row);
 /// The colour of a stitch type: knit cream, purl plum, yarn-over gold, twisted orange, increases green,
 /// decreases red, slip/cross blue; cable pieces teal, bind-off slate, turns pale grey.
 Eigen::Vector3f stitch_color(const std::string& type);
+
+/// A palette colour (sRGB 0..1) as the rasterizer draws: linear.
+Eigen::Vector3f linear_color(const std::array<double, 3>& srgb);
 
 std::vector<Polygon> stitch_polygons(const mesh::StitchMesh& mesh, ColorBy color);
 

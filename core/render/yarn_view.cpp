@@ -21,8 +21,7 @@ std::vector<Polygon> yarn_polygons(const mesh::YarnCurves& yarn, YarnColor color
       Eigen::Vector3f rgb;
       const int point = first + std::min(n - 1, static_cast<int>(i) / samples_per_segment);  // where this stretch starts
       if (color == YarnColor::Colour && yarn.point_colour.size() == yarn.points.size()) {
-        const auto& srgb = yarn.colours.at(static_cast<size_t>(yarn.point_colour[point])).srgb;
-        for (int k = 0; k < 3; ++k) rgb[k] = linear_of_byte(static_cast<unsigned>(std::lround(srgb[k] * 255)));
+        rgb = linear_color(yarn.colours.at(static_cast<size_t>(yarn.point_colour[point])).srgb);
       } else if (color == YarnColor::Yarn || yarn.point_type.empty() || yarn.point_type[first] < 0) {
         rgb = row_color(c);
       } else {  // the type of the control point this stretch starts from

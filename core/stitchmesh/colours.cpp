@@ -102,6 +102,16 @@ int find_colour(const std::vector<PatternColour>& palette, const std::string& na
   return -1;
 }
 
+std::vector<int> merge_palette(std::vector<PatternColour>& palette, const std::vector<PatternColour>& added) {
+  std::vector<int> index;
+  for (const auto& c : added) {
+    int i = find_colour(palette, c.name);
+    if (i < 0) i = static_cast<int>(palette.size()), palette.push_back(c);
+    index.push_back(i);
+  }
+  return index;
+}
+
 void colour_yarn(YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette) {
   yarn.point_colour.clear();
   yarn.colours.clear();

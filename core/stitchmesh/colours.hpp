@@ -38,6 +38,10 @@ std::string colour_code(const std::array<double, 3>& srgb);
 /// The palette index of `name` (case-insensitive), or -1.
 int find_colour(const std::vector<PatternColour>& palette, const std::string& name);
 
+/// Adds the colours of `added` that `palette` does not name yet (by name, case-insensitive; a name already there
+/// keeps its colour) and returns each added colour's index in `palette`: a pattern's palette joining a garment's.
+std::vector<int> merge_palette(std::vector<PatternColour>& palette, const std::vector<PatternColour>& added);
+
 /// Colours the yarn: each control point takes the colour of the stitch face it was emitted in
 /// (`face_colour[point_face]`), a point of no face (a border piece) that of the nearest point along its yarn
 /// that has one. Sets `yarn.point_colour` and `yarn.colours`; with an empty palette it clears them.

@@ -204,14 +204,6 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   return p;
 }
 
-std::vector<int> pattern_face_colours(const Pattern& pattern, int across, int up) {
-  if (pattern.palette.empty() || pattern.colours.size() != pattern.rows.size()) return {};
-  std::vector<int> out;
-  // In pattern_stitch_mesh's order: row by row, each row's repeats left to right.
-  for (int r = 0; r < up * pattern.height(); ++r)
-    for (int copy = 0; copy < across; ++copy) out.insert(out.end(), pattern.colours[r % pattern.height()].begin(), pattern.colours[r % pattern.height()].end());
-  return out;
-}
 
 void check_stacking(const Pattern& p, const std::vector<int>& row_line, const std::string& source) {
   // Every row takes the loops the row below it made; the first row takes the last row's, so the repeat stacks.
@@ -262,6 +254,7 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
   if (across < 1 || up < 1 || across > 4096 || up > 4096)
     throw Error("", "tiling", "the repeat counts must be 1 to 4096, found " + std::to_string(across) + " x " + std::to_string(up));
   StitchMesh mesh;
+  mesh.palette = pattern.palette;
   const auto vertex = [&](double x, double y) {
     mesh.vertices.emplace_back(x, y, 0.0);
     return static_cast<int>(mesh.vertices.size()) - 1;
@@ -277,14 +270,15 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
     std::vector<int> top{vertex(0, y)};
     size_t a = 0;
     for (int copy = 0; copy < across; ++copy)
-      for (const auto& name : row) {
-        const StitchType& type = *find_stitch_type(name);
+      for (size_t place = 0; place < row.size(); ++place) {
+        const StitchType& type = *find_stitch_type(row[place]);
         const size_t c = top.size() - 1;
         for (int j = 1; j <= type.top; ++j) top.push_back(vertex(static_cast<double>(c + j) * loop, y));
         StitchFace face;
         face.bottom = type.bottom;
         face.row = r;
         face.type = type.name;
+        if (!pattern.palette.empty()) face.colour = pattern.colours[r % pattern.height()][place];
         for (int i = 0; i <= type.bottom; ++i) face.vertices.push_back(bottom[a + i]);
         for (int j = type.top; j >= 0; --j) face.vertices.push_back(top[c + j]);
         mesh.faces.push_back(std::move(face));
@@ -339,7 +333,10 @@ std::vector<Eigen::Vector3d> spread(const std::vector<Eigen::Vector3d>& line, in
 /// Yuksel 2012 §5.3: each repeat's W x H plain stitches are removed and the pattern's faces generated in their
 /// place. The repeat's border keeps its vertices (its first row takes W loops and its last makes W); the
 /// course lines inside it get as many edges as the pattern's rows make loops, spread evenly along the old line.
-StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector<std::vector<int>>>& repeats, const Pattern& pattern) {
+/// `colour`: the mesh's palette index of each pattern colour (empty for a pattern in one colour: the new stitches
+/// then keep the colour of the stitch they lie over).
+StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector<std::vector<int>>>& repeats, const Pattern& pattern,
+                           const std::vector<int>& colour) {
   StitchMesh out = mesh;
   const int w = pattern.width(), h = pattern.height();
   std::vector<char> removed(mesh.faces.size(), 0);
@@ -379,8 +376,8 @@ StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector
       const auto& row = pattern.rows[r];
       const int taken = loops_taken(row);
       int a = 0, c = 0;
-      for (const auto& name : row) {
-        const StitchType& type = *find_stitch_type(name);
+      for (size_t place = 0; place < row.size(); ++place) {
+        const StitchType& type = *find_stitch_type(row[place]);
         // The old stitch under the new one's middle gives its input face.
         const int under = grid[r][std::min(w - 1, (2 * a + type.bottom) * w / (2 * taken))];
         StitchFace face;
@@ -388,6 +385,7 @@ StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector
         face.row = mesh.faces[under].row;
         face.type = type.name;
         face.input_face = mesh.faces[under].input_face;
+        face.colour = colour.empty() ? mesh.faces[under].colour : colour[static_cast<size_t>(pattern.colours[r][place])];
         for (int i = 0; i <= type.bottom; ++i) face.vertices.push_back(lines[r][a + i]);
         for (int j = type.top; j >= 0; --j) face.vertices.push_back(lines[r + 1][c + j]);
         added.push_back(std::move(face));
@@ -436,6 +434,9 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
     if (f < 0 || f >= n) throw Error("", "face " + std::to_string(f), "does not exist");
   TileReport counts;
   StitchMesh out = mesh;
+  // A pattern in colour brings its palette into the mesh's; stitches it does not reach keep theirs (the first
+  // colour, where the mesh had none: the pattern's main colour).
+  const std::vector<int> colour = merge_palette(out.palette, pattern.palette);
   if (!remeshes(pattern)) {
     // Plain stitches only: each chosen plain stitch takes the pattern's type at its row and column from the
     // origin, modulo the repeat, so the repeat may be cut anywhere.
@@ -444,8 +445,10 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
     for (int f : faces) {
       auto& face = out.faces[f];
       if (!is_plain(face)) continue;
-      const auto& row = pattern.rows[mod(grid.level[f] - grid.level[origin], pattern.height())];
-      face.type = row[mod(grid.column[f] - grid.column[origin], static_cast<long>(row.size()))];
+      const long r = mod(grid.level[f] - grid.level[origin], pattern.height());
+      const long c = mod(grid.column[f] - grid.column[origin], static_cast<long>(pattern.rows[r].size()));
+      face.type = pattern.rows[r][c];
+      if (!colour.empty()) face.colour = colour[static_cast<size_t>(pattern.colours[r][c])];
       ++counts.stitches;
     }
   } else {
@@ -483,7 +486,7 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
       throw Error("", "pattern " + pattern.name,
                   "re-meshes whole repeats of " + std::to_string(w) + " x " + std::to_string(h) + " plain stitches, and none fits among the chosen stitches from face " +
                       std::to_string(origin));
-    out = replace_repeats(mesh, repeats, pattern);
+    out = replace_repeats(out, repeats, pattern, colour);
     counts.repeats = static_cast<int>(repeats.size());
     counts.stitches = counts.repeats * w * h;
     const StitchReport check = validate(out);

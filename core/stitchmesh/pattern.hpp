@@ -64,9 +64,6 @@ void check_stacking(const Pattern& pattern, const std::vector<int>& row_line, co
 /// edges above their stitches (none in the top row: nothing is above it). Valid by construction.
 StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const StitchSize& size = {});
 
-/// The palette index of each face of pattern_stitch_mesh(pattern, across, up); empty for a pattern in one colour.
-std::vector<int> pattern_face_colours(const Pattern& pattern, int across, int up);
-
 /// Colours woven yarn made by woven_yarn(pattern, across, up) (wefts first, then warps) by the pattern's weft and warp
 /// colours; does nothing for a pattern in one colour.
 void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int up);

@@ -121,6 +121,26 @@ std::string project_text(const Project& p) {
       out += "cable ", put(out, edge.first), out += ' ', put(out, edge.second), out += ' ', put(out, mark.shift), out += ' ', put(out, mark.order);
       out += '\n';
     }
+    // Colours: the palette, then runs of faces of one colour other than the first.
+    for (const auto& c : p.stitch->palette) {
+      out += "colour " + c.name + ' ' + colour_code(c.srgb).substr(1);
+      std::istringstream words(c.description);  // one line, single spaces, no comment mark
+      for (std::string w; words >> w;) {
+        std::replace(w.begin(), w.end(), '#', '_');
+        out += ' ' + w;
+      }
+      out += '\n';
+    }
+    const auto& faces = p.stitch->faces;
+    for (size_t f = 0; !p.stitch->palette.empty() && f < faces.size();) {
+      size_t g = f + 1;
+      while (g < faces.size() && faces[g].colour == faces[f].colour) ++g;
+      if (faces[f].colour != 0) {
+        out += "face-colour ", put(out, static_cast<int>(f)), out += ' ', put(out, static_cast<int>(g - 1)), out += ' ', put(out, faces[f].colour);
+        out += '\n';
+      }
+      f = g;
+    }
   }
   out += "end\n";
   return out;
@@ -141,6 +161,8 @@ Project parse_project(const std::string& text, const std::string& name) {
   std::vector<int> stitch_face_lines;
   struct CableLine { int line, u, v, shift, order; };
   std::vector<CableLine> cable_lines;
+  struct ColourLine { int line, first, last, colour; };
+  std::vector<ColourLine> colour_lines;
 
   int line_no = 0;
   size_t pos = 0;
@@ -214,6 +236,21 @@ Project parse_project(const std::string& text, const std::string& name) {
       line.expect_count(5, 5, "two vertex ids, shift and order");
       cable_lines.push_back({line_no, line.integer(1, 0, kMaxCount), line.integer(2, 0, kMaxCount), line.integer(3, -kMaxCount, kMaxCount),
                              line.integer(4, -1, 1)});
+    } else if (key == "colour" && section == Section::Stitch) {
+      line.expect_count(3, 1 << 10, "a name, an sRGB colour as six hex digits and a description");
+      PatternColour c;
+      c.name = std::string(line.word(1));
+      const std::string hex(line.word(2));
+      if (hex.size() != 6 || !std::all_of(hex.begin(), hex.end(), [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); }))
+        line.fail("a colour is six hex digits (f0e6cf), found '" + hex + "'");
+      const unsigned value = static_cast<unsigned>(std::stoul(hex, nullptr, 16));
+      c.srgb = {((value >> 16) & 0xff) / 255.0, ((value >> 8) & 0xff) / 255.0, (value & 0xff) / 255.0};
+      for (size_t i = 3; i < line.size(); ++i) c.description += (i > 3 ? " " : "") + std::string(line.word(i));
+      if (find_colour(stitch.palette, c.name) >= 0) line.fail("colour '" + c.name + "' is given twice");
+      stitch.palette.push_back(std::move(c));
+    } else if (key == "face-colour" && section == Section::Stitch) {
+      line.expect_count(4, 4, "first and last face id and a colour index");
+      colour_lines.push_back({line_no, line.integer(1, 0, kMaxCount), line.integer(2, 0, kMaxCount), line.integer(3, 0, kMaxCount)});
     } else if (key == "face" && section == Section::Labels) {
       line.expect_count(5, 5, "face id, row, left and right wale edge");
       face_lines.push_back({line_no, line.integer(1, 0, kMaxCount), line.integer(2, 0, kMaxCount), line.integer(3, 0, kMaxCount),
@@ -272,6 +309,15 @@ Project parse_project(const std::string& text, const std::string& name) {
       if (c.u >= static_cast<int>(stitch.vertices.size()) || c.v >= static_cast<int>(stitch.vertices.size()))
         throw Error(name, "line " + std::to_string(c.line), "cable edge refers to a vertex that does not exist");
       stitch.cables[std::minmax(c.u, c.v)] = {c.shift, c.order};
+    }
+    for (const auto& c : colour_lines) {
+      const auto fail = [&](const std::string& rule) { throw Error(name, "line " + std::to_string(c.line), rule); };
+      if (c.colour >= static_cast<int>(stitch.palette.size()))
+        fail("colour " + std::to_string(c.colour) + " is not one of the " + std::to_string(stitch.palette.size()) + " colours given");
+      if (c.last < c.first || c.last >= static_cast<int>(stitch.faces.size()))
+        fail("faces " + std::to_string(c.first) + " to " + std::to_string(c.last) + " are not faces of the stitch mesh (it has " +
+             std::to_string(stitch.faces.size()) + ")");
+      for (int f = c.first; f <= c.last; ++f) stitch.faces[static_cast<size_t>(f)].colour = c.colour;
     }
     for (const auto& f : stitch.faces)
       if (f.input_face >= 0 && (!p.input || f.input_face >= p.input->num_faces()))

@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "stitchmesh/colours.hpp"
+
 namespace skein::mesh {
 
 /// One stitch (Yuksel 2012 §4.1). The loop is counter-clockwise and starts at the bottom-left corner:
@@ -20,6 +22,7 @@ struct StitchFace {
   int row = -1;         ///< stitch row: the faces joined by wale edges
   std::string type = "k";
   int input_face = -1;  ///< the input-mesh face it was tessellated from, -1 when made by an edit
+  int colour = 0;       ///< the yarn's colour: an index into StitchMesh::palette (unused while it is empty)
 
   int size() const { return static_cast<int>(vertices.size()); }
   int top() const { return size() - bottom - 2; }
@@ -51,6 +54,7 @@ struct StitchMesh {
   std::vector<Eigen::Vector3d> vertices;  ///< [mm]
   std::vector<StitchFace> faces;
   std::map<std::pair<int, int>, CableMark> cables;  ///< course edges marked as cable edges, lower vertex first
+  std::vector<PatternColour> palette;  ///< the yarn's colours (issue 26): empty for yarn of one colour
 
   bool operator==(const StitchMesh&) const = default;
 };

@@ -521,7 +521,13 @@ YarnCurves emit_yarn(const StitchMesh& mesh, const StitchLibrary& library, const
   const StitchReport check = validate(mesh);
   if (!check.valid()) throw Error("", "stitch mesh", "is not valid, so no yarn can be emitted:\n" + check.summary(5));
   EmitReport local;
-  return Emitter(mesh, library, options).run(report ? *report : local);
+  YarnCurves yarn = Emitter(mesh, library, options).run(report ? *report : local);
+  if (!mesh.palette.empty()) {  // each piece of yarn in its stitch's colour
+    std::vector<int> face_colour;
+    for (const auto& f : mesh.faces) face_colour.push_back(f.colour);
+    colour_yarn(yarn, face_colour, mesh.palette);
+  }
+  return yarn;
 }
 
 }  // namespace skein::mesh

@@ -140,6 +140,35 @@ TEST(Pattern, TilingOntoAStitchMeshPlacesTheRepeatFromTheOriginFace) {
   }
 }
 
+TEST(Pattern, TilingInColourBringsThePatternsPaletteIntoTheMeshs) {
+  const auto piece = skein::testing::small_piece(models::tube(), "");
+  const auto faces = skein::testing::all_faces(piece);
+  const auto grid = stitch_grid(piece);
+  const int origin = faces.front();
+  // Two-row stripes repaint the plain stitches: each takes its row's colour from the origin; the mesh gets the palette.
+  const auto stripes = parse_pattern("format knit\ncolour MC: cream\ncolour CC: navy\nk\nk\ncolours\nCC\nMC\n", "s.knit");
+  const auto striped = tile_pattern(piece, faces, stripes, origin);
+  ASSERT_EQ(striped.palette, stripes.palette);
+  for (int f : faces)
+    if (piece.faces[f].bottom == 1 && piece.faces[f].top() == 1)
+      EXPECT_EQ(striped.faces[f].colour, ((grid.level[f] - grid.level[origin]) % 2 + 2) % 2 == 0 ? 0 : 1) << "face " << f;
+  // A second pattern's colours join by name: its CC is the mesh's CC, its new colour is added after it.
+  const auto dots = parse_pattern("format knit\ncolour CC: red\ncolour D: gold\nk k\ncolours\nCC D\n", "d.knit");
+  const auto dotted = tile_pattern(striped, faces, dots, origin);
+  ASSERT_EQ(dotted.palette.size(), 3u);
+  EXPECT_EQ(dotted.palette[1].description, "navy");  // the mesh's CC keeps its colour
+  EXPECT_EQ(dotted.palette[2].name, "D");
+  EXPECT_EQ(dotted.faces[origin].colour, 1);
+  // A pattern that re-meshes gives its new faces their colours too; one without colours keeps the stitches' own.
+  const auto cable = parse_pattern("format knit\ncolour A: red\ncolour B: white\nk k k k\ncable2x2+\ncolours\nA\nB\n", "c.knit");
+  const auto cabled = tile_pattern(striped, faces, cable, origin);
+  EXPECT_EQ(cabled.palette.size(), 4u);  // MC, CC, A, B
+  EXPECT_GT(std::count_if(cabled.faces.begin(), cabled.faces.end(), [](const StitchFace& f) { return f.colour == 2; }), 0);
+  const auto plain = tile_pattern(striped, faces, parse_pattern("format knit\np p\n", "p.knit"), origin);
+  EXPECT_EQ(plain.palette, striped.palette);
+  for (int f : faces) EXPECT_EQ(plain.faces[f].colour, striped.faces[f].colour);
+}
+
 TEST(Pattern, TilingRefusesWhatItCannotPlace) {
   const auto piece = skein::testing::small_piece(models::tube(), "");
   const auto faces = skein::testing::all_faces(piece);

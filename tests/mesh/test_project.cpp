@@ -23,6 +23,9 @@ mesh::Project full_project() {
   s = mesh::fill(s, skein::testing::all_faces(s), mesh::parse_fill("rib2x2"));
   p.stitch = mesh::mark_cable(s, mesh::top_edge_path(s, 3, 2, 4), 1, -1);
   p.settings = {{"yarn.tolerance", "0.005"}, {"yarn.method", "euler"}};
+  // Yarn in two colours: a run of faces in the second (issue 26), the description's comment mark made harmless.
+  p.stitch->palette = {{"MC", "cream", {240 / 255.0, 230 / 255.0, 207 / 255.0}}, {"CC", "navy #1", {31 / 255.0, 42 / 255.0, 68 / 255.0}}};
+  for (int f = 10; f < 30; ++f) p.stitch->faces[f].colour = 1;
   return p;
 }
 
@@ -45,7 +48,12 @@ TEST(Project, RoundTripIsExact) {
   EXPECT_EQ(back.labels->rows, p.labels->rows);
   EXPECT_EQ(back.values->edge, p.values->edge);
   EXPECT_EQ(back.values->marked, p.values->marked);
-  EXPECT_TRUE(*back.stitch == *p.stitch);
+  EXPECT_EQ(back.stitch->faces, p.stitch->faces);
+  EXPECT_EQ(back.stitch->cables, p.stitch->cables);
+  ASSERT_EQ(back.stitch->palette.size(), 2u);
+  EXPECT_EQ(back.stitch->palette[1].description, "navy _1");
+  EXPECT_EQ(mesh::colour_code(back.stitch->palette[1].srgb), "#1f2a44");
+  EXPECT_NE(text.find("colour CC 1f2a44 navy _1\nface-colour 10 29 1\n"), std::string::npos);
   EXPECT_EQ(back.stitch_size.width, 6.25);
   EXPECT_EQ(back.settings, p.settings);
   EXPECT_EQ(back.settings[1].line, 4);  // after the header and the stitch size
@@ -92,6 +100,12 @@ TEST(Project, BadFilesNameTheLineAndRule) {
       {"skein 1\nset yarn.tolerance\nend\n", "line 2", "expected a key and a value"},
       {"skein 1\nset yarn/tolerance 0.1\nend\n", "line 2", "may hold only letters"},
       {"skein 1\nset yarn.halo 2\nset yarn.halo 3\nend\n", "line 3", "'yarn.halo' is set twice (first at line 2)"},
+      {h + "stitch-mesh\ncolour A f0e6\nend\n", "line 10", "a colour is six hex digits (f0e6cf), found 'f0e6'"},
+      {h + "stitch-mesh\ncolour A f0e6cf\ncolour a 000000\nend\n", "line 11", "colour 'a' is given twice"},
+      {h + "stitch-mesh\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 0 1 k -1 0 1 2 3\ncolour A f0e6cf\nface-colour 0 0 1\nend\n", "line 16",
+       "colour 1 is not one of the 1 colours given"},
+      {h + "stitch-mesh\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 0 1 k -1 0 1 2 3\ncolour A f0e6cf\ncolour B 000000\nface-colour 0 3 1\nend\n", "line 17",
+       "faces 0 to 3 are not faces of the stitch mesh (it has 1)"},
   };
   for (const auto& c : cases) {
     const std::string msg = parse_error(c.text);

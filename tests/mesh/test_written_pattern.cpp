@@ -429,11 +429,13 @@ TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
   ASSERT_EQ(p.palette.size(), 2u);
   EXPECT_EQ(mesh::colour_code(p.palette[0].srgb), "#f0e6cf");
   EXPECT_EQ(p.colours, (std::vector<std::vector<int>>{{1, 1, 1, 1, 1, 1}, {0, 1, 1, 1, 1, 0}}));  // bottom row first; the cable's four faces each
-  // The faces of a tiling, in pattern_stitch_mesh's order: row by row, each row's repeats left to right.
-  const auto faces = mesh::pattern_face_colours(p, 2, 1);
-  ASSERT_EQ(faces.size(), mesh::pattern_stitch_mesh(p, 2, 1).faces.size());
+  // The faces of a tiling take their stitches' colours (row by row, each row's repeats left to right), its palette the pattern's.
+  const auto tiling = mesh::pattern_stitch_mesh(p, 2, 1);
+  std::vector<int> faces;
+  for (const auto& f : tiling.faces) faces.push_back(f.colour);
   EXPECT_EQ(faces, (std::vector<int>{1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 0, 0, 1, 1, 1, 1, 0}));
-  EXPECT_TRUE(mesh::pattern_face_colours(mesh::parse_pattern("format knit\nk p\n", "p.knit"), 2, 2).empty());
+  EXPECT_EQ(tiling.palette, p.palette);
+  EXPECT_TRUE(mesh::pattern_stitch_mesh(mesh::parse_pattern("format knit\nk p\n", "p.knit"), 2, 2).palette.empty());
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "c.knit"); }); };
   EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA B\n"), "c.knit: line 5, column 3: 'B' is not a declared colour (A)");
   EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA A A\n"),

@@ -248,8 +248,8 @@ TEST(YarnIo, YarnInColoursGetsAMaterialPerColourInObjAndGltf) {
   ScratchDir dir;
   const auto pattern = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/peerie.txt");
   ASSERT_EQ(pattern.palette.size(), 2u);
-  auto y = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 2, 1), mesh::StitchLibrary::bundled(), {});
-  mesh::colour_yarn(y, mesh::pattern_face_colours(pattern, 2, 1), pattern.palette);
+  const auto y = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 2, 1), mesh::StitchLibrary::bundled(), {});  // coloured by its faces
+  ASSERT_EQ(y.point_colour.size(), y.points.size());
   relax::write_tube_obj(y, dir / "t.obj", {6, 2});
   const std::string mtl = bytes(dir / "t.mtl"), obj = bytes(dir / "t.obj");
   EXPECT_NE(obj.find("mtllib t.mtl\n"), std::string::npos);
