@@ -109,6 +109,10 @@ Geometry input_geometry(const mesh::InputMesh& input, const std::optional<mesh::
   return g;
 }
 
+namespace {
+Eigen::Vector3f stitch_srgb(const std::array<double, 3>& srgb) { return {static_cast<float>(srgb[0]), static_cast<float>(srgb[1]), static_cast<float>(srgb[2])}; }
+}  // namespace
+
 std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest) {
   std::vector<double> strain;
   if (coloring == Coloring::Stretch && rest) strain = relax::face_stretch(stitch, rest->r_course, rest->r_wale).area_strain;
@@ -116,8 +120,9 @@ std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Colorin
   for (size_t f = 0; f < stitch.faces.size(); ++f) {
     if (coloring == Coloring::StitchType) colors[f] = render::stitch_color(stitch.faces[f].type);
     if (coloring == Coloring::Row) colors[f] = render::row_color(stitch.faces[f].row);
-    if (coloring == Coloring::YarnColour)
-      colors[f] = stitch.palette.empty() ? render::stitch_color(stitch.faces[f].type) : render::linear_color(stitch.palette.at(static_cast<size_t>(stitch.faces[f].colour)).srgb);
+    if (coloring == Coloring::YarnColour)  // the view shows colours as given, not gamma-encoded: a palette's sRGB as it is
+      colors[f] = stitch.palette.empty() ? render::stitch_color(stitch.faces[f].type)
+                                         : stitch_srgb(stitch.palette.at(static_cast<size_t>(stitch.faces[f].colour)).srgb);
     if (!strain.empty()) colors[f] = render::strain_color(strain[f]);
   }
   return colors;
@@ -150,7 +155,11 @@ Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail, int max_
     for (const auto& polygon : render::yarn_polygons(yarn, color, full ? 6 : 4, full ? 2 : 1)) {
       std::vector<int> loop(polygon.points.size());
       for (size_t k = 0; k < loop.size(); ++k) loop[k] = static_cast<int>(k);
-      add_polygon(g, polygon.points, loop, polygon.color);
+      // The rasterizer's colours are linear; the view shows colours as given, so the yarn's own go back to sRGB.
+      Color shown = polygon.color;
+      if (color == render::YarnColor::Colour)
+        for (int k = 0; k < 3; ++k) shown[k] = render::display_byte(polygon.color[k]) / 255.0f;
+      add_polygon(g, polygon.points, loop, shown);
     }
   } else {
     const auto curves = relax::sample_curves(yarn, 2);

@@ -264,6 +264,36 @@ private slots:
     check_shot(w, "traced-triangles", {}, 0.05);
   }
 
+  void a_pattern_in_colour_colours_the_garment_and_its_yarn() {
+    // Issue 26: stripes tiled onto a swatch give its stitches and its yarn their colours (View > Colour by yarn
+    // colour, and the yarn layer), and the project keeps them.
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    auto& doc = w.document();
+    QVERIFY(w.open_file(kModels + "/swatch.obj"));
+    action(w, "autoLabel")->trigger();
+    doc.set_stitch_size({12, 10});
+    action(w, "generate")->trigger();
+    QVERIFY(doc.state().stitch);
+    std::vector<int> all(doc.state().stitch->faces.size());
+    std::iota(all.begin(), all.end(), 0);
+    w.set_selection(all);
+    QVERIFY2(w.tile_pattern_file(kPatterns + "/written/garter-stripes.txt"), qPrintable(w.last_error()));
+    w.set_selection({});
+    const auto& palette = doc.state().stitch->palette;
+    QCOMPARE(static_cast<int>(palette.size()), 2);
+    // As the view shows them: the palette's sRGB (cream and a navy light enough for the shot's dark cut-off).
+    QVERIFY(palette[1].description == "navy");
+    const auto shown = [](const std::array<double, 3>& c) { return Eigen::Vector3f(c[0], c[1], c[2]); };
+    const std::vector<Eigen::Vector3f> colours{shown(palette[0].srgb), shown(palette[1].srgb)};
+    action(w, "colorYarn")->trigger();
+    check_shot(w, "colour-stitches", colours);
+    QVERIFY(w.emit_yarn());
+    QVERIFY(!doc.state().yarn->point_colour.empty());
+    check_shot(w, "colour-yarn", colours, 0.05);
+  }
+
   void open_label_tessellate_paint_relax_export() {
     MainWindow w;
     w.show();
