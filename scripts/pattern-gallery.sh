@@ -29,9 +29,15 @@ picture() {
   local f=$1 folder=$2 name tile
   name=$(basename "$f"); name=${3:-}${name%.*}
   "$skein" -q pattern "$f" -o "$tmp/out.bcc" --tile 1x1 --report "$tmp/size.json"
-  tile=$(python3 -c "import json, math; w, h = json.load(open('$tmp/size.json'))['repeat']; print(f'{math.ceil(12 / w)}x{math.ceil(12 / h)}')")
-  "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" --tile "$tile" \
-    --preview-png "docs/$folder/$name.png" --views front --png-size 360
+  if python3 -c "import json, sys; sys.exit(0 if json.load(open('$tmp/size.json')).get('shaped_piece') else 1)"; then
+    # A shaped piece is knitted once: relaxed whole with its free borders.
+    "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --tiled --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" \
+      --png "docs/$folder/$name.png" --views front --png-size 360
+  else
+    tile=$(python3 -c "import json, math; w, h = json.load(open('$tmp/size.json'))['repeat']; print(f'{math.ceil(12 / w)}x{math.ceil(12 / h)}')")
+    "$skein" -q pattern "$f" -o "$tmp/out.bcc" --relax --method fire --stop-rule leaf --no-audit --report "$tmp/r.json" --tile "$tile" \
+      --preview-png "docs/$folder/$name.png" --views front --png-size 360
+  fi
   python3 - "$f" "$tmp/r.json" "$name" "$folder" >>"$page" <<'PY'
 import json, sys
 f, report, name, folder = sys.argv[1:]
@@ -40,7 +46,8 @@ comments = [l[1:].strip() for l in open(f) if l.startswith(("#", ";"))]
 # A WIF draft has no "# name:" or "# source:": its title is the pattern's name, its leading comment the source.
 title = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("name:")), r["pattern"])
 source = next((l.split(":", 1)[1].strip() for l in comments if l.startswith("source:")), " ".join(comments) if f.endswith(".wif") else "")
-print(f"| **{title}** (`{f}`): {source} | {r['periodic']['real_points']} control points | {r['steps']} | ![{title}]({folder}/{name}.png) |")
+points = r['periodic']['real_points'] if 'periodic' in r else r['yarn']['control_points']  # a shaped piece: all of its yarn
+print(f"| **{title}** (`{f}`): {source} | {points} control points | {r['steps']} | ![{title}]({folder}/{name}.png) |")
 PY
 }
 for f in patterns/*.knit patterns/*.weave; do picture "$f" images/patterns; done

@@ -994,6 +994,15 @@ int run_command_line(int argc, char** argv) {
       if (std::sscanf(pat_tile.c_str(), "%dx%d%c", &across, &up, &tail) != 2 || across < 1 || up < 1)
         throw Error("", "--tile", "expected NxM with N and M at least 1 (e.g. 4x4), found '" + pat_tile + "'");
       const auto pattern = mesh::read_pattern(pat_in);
+      if (pattern.whole) {
+        // A shaped piece is knitted once (patterns/FORMAT.md): not tiled, and relaxed with its free borders.
+        if (pat->count("--tile") > 0 && (across != 1 || up != 1))
+          throw Error(pat_in, "--tile", "is a shaped piece (it casts on and shapes its rows), knitted once: it takes --tile 1x1 or none");
+        across = up = 1;
+        if (pat_relax && !pat_tiled && pat_onto.empty())
+          throw Error(pat_in, "--relax", "is a shaped piece: it has no periodic repeat; relax it whole with free borders (--relax --tiled)");
+        if (!pat_onto.empty()) throw Error(pat_in, "--onto", "is a shaped piece: it is knitted as its own fabric, not tiled onto a garment");
+      }
       std::optional<render::Image> chart;  // drawn now (a woven pattern is refused before any work), written with the outputs
       if (!pat_chart_png.empty()) {
         check_writable(pat_chart_png);
@@ -1182,6 +1191,7 @@ int run_command_line(int argc, char** argv) {
                   {"repeat", {pattern.width(), pattern.height()}}, {"tile", {across, up}}, {"yarn", yarn_json(yarn)}};
         if (!fabric.report.is_null()) j["fabric"] = fabric.report;
         if (pat_extra.contains("colours")) j["colours"] = pat_extra["colours"];
+        if (pattern.whole) j["shaped_piece"] = true;
         write_json(j, pat_report);
       }
       if (!pat_png.empty()) render_yarn_tubes(yarn, pat_png, color, pat_views, pat_panel);

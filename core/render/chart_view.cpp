@@ -65,6 +65,7 @@ std::string glyphs_of(const std::string& type, int cells) {
 
 Image draw_chart(const mesh::Pattern& pattern, int cell) {
   if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "chart", "a woven pattern has no knitting chart: draw its yarn with --png");
+  if (pattern.whole) throw Error("", "chart", "a shaped piece (rows of their own widths) has no chart yet: draw its yarn with --png");
   if (cell < 8 || cell > 200) throw Error("", "chart", "cells of 8 to 200 pixels, found " + std::to_string(cell));
   Sketch s;
   int width = 0;

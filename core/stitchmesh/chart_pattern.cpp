@@ -407,6 +407,7 @@ bool same_stitches(const Pattern& a, const Pattern& b) {
 
 std::string write_chart_pattern(const Pattern& pattern) {
   if (pattern.format == PatternFormat::Woven) throw Error("", "chart", "a woven pattern has no knitting chart");
+  if (pattern.whole) throw Error("", "chart", "a shaped piece (rows of their own widths) has no chart yet: charts hold repeats");
   // Flat (wrong-side rows read with their wrong-side stitches) where that reads back as the same stitches; else
   // read from the right side on every row: lace pairs and cables have models on right-side rows only.
   std::string why;

@@ -210,6 +210,7 @@ void check_stacking(const Pattern& p, const std::vector<int>& row_line, const st
   const auto at = [](int line) { return "line " + std::to_string(line); };
   const int n = static_cast<int>(p.rows.size());
   for (int r = 0; r < n; ++r) {
+    if (p.whole && r + 1 == n) break;  // a shaped piece is knitted once: its last row is bound off, not stacked
     const int above = (r + 1) % n, made = loops_made(p.rows[r]), taken = loops_taken(p.rows[above]);
     if (made == taken) continue;
     if (above == 0)
@@ -253,6 +254,9 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
   if (pattern.format == PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: it has no stitch mesh (use woven_yarn)");
   if (across < 1 || up < 1 || across > 4096 || up > 4096)
     throw Error("", "tiling", "the repeat counts must be 1 to 4096, found " + std::to_string(across) + " x " + std::to_string(up));
+  if (pattern.whole && (across != 1 || up != 1))
+    throw Error("", "pattern " + pattern.name, "is a shaped piece, knitted once: it is not tiled (--tile 1x1), found " + std::to_string(across) + " x " +
+                                                   std::to_string(up));
   StitchMesh mesh;
   mesh.palette = pattern.palette;
   const auto vertex = [&](double x, double y) {
@@ -266,14 +270,17 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
   for (int k = 0; k <= pattern.width() * across; ++k) bottom.push_back(vertex(k * size.width, 0));
   for (int r = 0; r < up * pattern.height(); ++r) {
     const auto& row = pattern.rows[r % pattern.height()];
-    const double y = (r + 1) * size.height, loop = width / (across * loops_made(row));
-    std::vector<int> top{vertex(0, y)};
+    // A shaped piece's rows are as wide as their loops, centred on the first row's (decreases narrow the fabric);
+    // a repeat's spread over its width.
+    const double y = (r + 1) * size.height, loop = pattern.whole ? size.width : width / (across * loops_made(row));
+    const double x0 = pattern.whole ? 0.5 * (width - loops_made(row) * size.width) : 0.0;
+    std::vector<int> top{vertex(x0, y)};
     size_t a = 0;
     for (int copy = 0; copy < across; ++copy)
       for (size_t place = 0; place < row.size(); ++place) {
         const StitchType& type = *find_stitch_type(row[place]);
         const size_t c = top.size() - 1;
-        for (int j = 1; j <= type.top; ++j) top.push_back(vertex(static_cast<double>(c + j) * loop, y));
+        for (int j = 1; j <= type.top; ++j) top.push_back(vertex(x0 + static_cast<double>(c + j) * loop, y));
         StitchFace face;
         face.bottom = type.bottom;
         face.row = r;
@@ -428,6 +435,7 @@ StitchMesh replace_repeats(const StitchMesh& mesh, const std::vector<std::vector
 
 StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, const Pattern& pattern, int origin, TileReport* report) {
   if (pattern.format == PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: it cannot be tiled onto a stitch mesh");
+  if (pattern.whole) throw Error("", "pattern " + pattern.name, "is a shaped piece, knitted as its own fabric: it cannot be tiled onto a stitch mesh");
   const int n = static_cast<int>(mesh.faces.size());
   if (origin < 0 || origin >= n) throw Error("", "face " + std::to_string(origin), "does not exist (the stitch mesh has " + std::to_string(n) + " faces)");
   for (int f : faces)

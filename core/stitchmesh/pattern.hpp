@@ -42,6 +42,9 @@ struct Pattern {
   std::vector<std::vector<int>> colours;
   /// Wovens in colour (WIF drafts): each weft row's and each warp column's index into the palette; empty for none.
   std::vector<int> weft_colours, warp_colours;
+  /// A shaped piece (knits, issue 26): its rows are the whole fabric, knitted once and not repeated, each as wide
+  /// as its stitches (a row takes the loops the row below made; the first row is the cast-on's).
+  bool whole = false;
 
   int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
   int height() const;  ///< rows or weft yarns in one repeat

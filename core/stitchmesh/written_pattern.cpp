@@ -402,6 +402,14 @@ int loops_taken(const std::vector<Item>& items) {
   for (const auto& item : items) n += taken(item);
   return n;
 }
+int made(const Item& item) {
+  return item.kind == Item::Cable ? item.over + item.under : item.kind == Item::Fill ? 1 : find_stitch_type(item.type)->top;
+}
+int loops_made(const std::vector<Item>& items) {
+  int n = 0;
+  for (const auto& item : items) n += made(item);
+  return n;
+}
 
 /// One row as written: the stitches before its `*` repeat, the repeat, and those after (the edge stitches).
 /// A row without `*` is all repeat; `knit` / `purl` is a repeat of one stitch.
@@ -544,6 +552,44 @@ RowsAgain rows_again(const std::smatch& m, int written, int line, int heading_ro
 }
 }  // namespace
 
+/// A shaped piece's rows as written, each row whole; "Cast on N sts." in the description must match the first row.
+Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string& description, const std::string& source) {
+  p.whole = true;
+  static const std::regex cast_on(R"(cast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
+  std::smatch m;
+  if (std::regex_search(description, m, cast_on) && count_of(m[1].str()) != loops_taken(rows[0].repeat))
+    throw Error(source, "line " + std::to_string(rows[0].line),
+                "takes " + std::to_string(loops_taken(rows[0].repeat)) + " stitches, but the pattern casts on " + m[1].str());
+  std::vector<int> row_line;
+  int below = 0;
+  for (auto& row : rows) {
+    if (row.repeat.size() == 1 && row.repeat[0].kind == Item::Fill) {  // `knit`: as wide as the row below
+      const Item fill = row.repeat[0];
+      row.repeat.assign(static_cast<size_t>(below), fill);
+    }
+    std::vector<std::string> types;
+    std::vector<int> colours;
+    for (const auto& item : row.front(1)) {
+      if (item.kind == Item::Cable) {
+        int loops = 0;
+        for (const auto& t : types) loops += find_stitch_type(t)->top;
+        p.cables.push_back({static_cast<int>(p.rows.size()), loops, item.over, item.under, item.order});
+        types.insert(types.end(), item.over + item.under, "k");
+        colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
+      } else {
+        types.push_back(item.type);
+        colours.push_back(std::max(item.colour, 0));
+      }
+    }
+    below = loops_made(row.repeat);
+    p.rows.push_back(std::move(types));
+    if (!p.palette.empty()) p.colours.push_back(std::move(colours));
+    row_line.push_back(row.line);
+  }
+  check_stacking(p, row_line, source);
+  return p;
+}
+
 Pattern parse_written_pattern(const std::string& text, const std::string& source) {
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();
@@ -673,6 +719,25 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   implied_ws(static_cast<int>(rows.size()) + 2);  // a pattern that ends on a right-side row ends with its wrong-side row
   if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
   if (p.note.empty()) p.note = description;
+
+  // A shaped piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat,
+  // every row written whole and taking the loops the row below made, and not every row as wide. It is knitted
+  // once, as written: `knit` and `purl` rows as wide as the row below.
+  const auto fill_row = [](const WrittenRow& row) { return row.repeat.size() == 1 && row.repeat[0].kind == Item::Fill; };
+  static const std::regex cast_on(R"(\bcast\s+on\s+\d+\s*(?:sts|stitches)\b)", std::regex::icase);
+  if (std::regex_search(description, cast_on) && std::none_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; }) &&
+      !fill_row(rows[0])) {
+    bool stacks = true, shaped = false;
+    int below = loops_made(rows[0].repeat);
+    for (size_t r = 1; r < rows.size() && stacks; ++r) {
+      if (fill_row(rows[r])) continue;
+      stacks = loops_taken(rows[r].repeat) == below;
+      shaped = shaped || loops_taken(rows[r].repeat) != loops_taken(rows[0].repeat) || below != loops_taken(rows[0].repeat);
+      below = loops_made(rows[r].repeat);
+    }
+    shaped = shaped || below != loops_taken(rows[0].repeat);
+    if (stacks && shaped) return shaped_piece(std::move(p), rows, description, source);
+  }
 
   // One repeat as wide as every row's: the least common multiple of their repeats' widths. Each row is laid out
   // whole, edge stitches and all, at one width, as seen from the front; the repeat is the window of that width

@@ -1013,6 +1013,24 @@ TEST(Cli, PatternInColoursReportsItsYarnAndWritesItsMaterials) {
   EXPECT_FALSE(std::filesystem::exists(dir / "b.bcc"));
 }
 
+TEST(Cli, AShapedPieceIsEmittedOnceAndRelaxedWithFreeBorders) {
+  ScratchDir dir;
+  const std::string triangle = std::string(SKEIN_PATTERNS_DIR) + "/written/garter-triangle.txt";
+  auto r = run_skein("pattern " + triangle + " -o " + (dir / "t.bcc").string() + " --report " + (dir / "t.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "t.json")).at("tile"), nlohmann::json::array({1, 1}));  // not the default 4 x 4
+  r = run_skein("pattern " + triangle + " --relax --tiled --no-audit --max-steps 30 -o " + (dir / "r.bcc").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  // No periodic repeat, no tiling, no garment to tile onto: each refused naming the file and the option.
+  for (const auto& [options, said] : {std::pair{"--relax", "--relax: is a shaped piece: it has no periodic repeat"},
+                                      std::pair{"--tile 2x2", "--tile: is a shaped piece"}}) {
+    r = run_skein("pattern " + triangle + " " + options + " -o " + (dir / "x.bcc").string());
+    EXPECT_EQ(r.status, 2) << options;
+    EXPECT_NE(r.output.find("garter-triangle.txt: " + std::string(said)), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.bcc"));
+  }
+}
+
 TEST(Cli, AuditWithTheStitchIdsNamesTheStitchesOfEachCrossing) {
   ScratchDir dir;
   const auto project = dir / "s.skein";

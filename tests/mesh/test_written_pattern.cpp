@@ -10,6 +10,7 @@
 #include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/written_pattern.hpp"
+#include "stitchmesh/yarn_emission.hpp"
 #include "testing.hpp"
 
 using namespace skein;
@@ -274,6 +275,8 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
       } catch (const Error& e) {
         if (entry.path().filename() == "feather-and-fan.txt") {  // its k2tog, yo pairs regroup when read back (YarnOver test)
           EXPECT_NE(std::string(e.rule()).find("does not read back as the pattern"), std::string::npos) << e.what();
+        } else if (pattern.whole) {  // a shaped piece: charts hold repeats
+          EXPECT_NE(std::string(e.rule()).find("a shaped piece"), std::string::npos) << e.what();
         } else {
           EXPECT_NE(std::string(e.rule()).find("has no chart symbol yet"), std::string::npos) << e.what();
           EXPECT_NE(e.place().find("row "), std::string::npos) << e.what();
@@ -464,4 +467,37 @@ TEST(PatternColours, WrittenInstructionsSayTheColourAsKnittersDo) {
   ASSERT_EQ(peerie.height(), 7);
   EXPECT_EQ(peerie.colours[3], (std::vector<int>{1, 0, 0, 0, 1, 0}));
   EXPECT_EQ(peerie.colours[0], (std::vector<int>(6, 0)));
+}
+
+TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
+  // "Cast on 8 sts." and rows of their own widths, no '*' repeat: a garter triangle decreased to a point.
+  const auto p = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/garter-triangle.txt");
+  ASSERT_TRUE(p.whole);
+  ASSERT_EQ(p.height(), 7);
+  EXPECT_EQ(p.width(), 8);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "k", "k", "k", "k", "d12k"}));  // RS: worked right to left, its k2tog on the right
+  EXPECT_EQ(p.rows[1], (std::vector<std::string>{"d12p", "p", "p", "p", "p", "p"}));     // WS: garter's purl ridge from the front
+  EXPECT_EQ(p.rows[6], (std::vector<std::string>{"d12k"}));
+  // Knitted once: one face per stitch, every row narrower than the one below and centred on it; it emits.
+  const auto piece = mesh::pattern_stitch_mesh(p, 1, 1);
+  EXPECT_EQ(piece.faces.size(), 28u);
+  EXPECT_TRUE(mesh::validate(piece).valid());
+  double low = 1e9, high = -1e9;
+  for (const auto& f : piece.faces)
+    if (f.row == 6)
+      for (int v : f.vertices) low = std::min(low, piece.vertices[v].x()), high = std::max(high, piece.vertices[v].x());
+  EXPECT_NEAR(0.5 * (low + high), 0.5 * 8 * mesh::StitchSize{}.width, 1e-9);
+  EXPECT_FALSE(mesh::emit_yarn(piece, mesh::StitchLibrary::bundled(), {}).points.empty());
+  EXPECT_NE(error_of([&] { mesh::pattern_stitch_mesh(p, 2, 1); }).find("is a shaped piece, knitted once"), std::string::npos);
+  EXPECT_NE(error_of([&] { mesh::write_chart_pattern(p); }).find("a shaped piece"), std::string::npos);
+  // The cast-on must be the first row's; "knit" rows are as wide as the row below; without "Cast on" the rows
+  // are a repeat, and rows of other widths are refused as before.
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "s.txt"); }); };
+  EXPECT_EQ(error("Cast on 5 sts.\nRow 1: K2tog, k2.\nRow 2: Knit.\n"), "s.txt: line 2: takes 4 stitches, but the pattern casts on 5");
+  const auto filled = mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K2tog, k2.\nRow 2: Knit.\nRow 3: K1, k2tog.\n", "s.txt");
+  ASSERT_TRUE(filled.whole);
+  EXPECT_EQ(filled.rows[1], (std::vector<std::string>{"p", "p", "p"}));
+  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "s.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5");
+  EXPECT_NE(error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n").find("this row takes 4 loops but the row below it (line 2) makes 3"), std::string::npos)
+      << error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n");
 }
