@@ -45,6 +45,7 @@ struct Item {
   int over = 0, under = 0, order = 1;  ///< Cable, as seen from the front (PatternCable)
   int times = 1;           ///< Group
   int colour = -1;         ///< Stitch, Cable, Fill: index into the pattern's palette (issue 26), -1 for none said
+  int leave = 0;           ///< Fill: "k to last N sts" leaves N
   std::vector<Item> items; ///< Group
 };
 
@@ -303,10 +304,11 @@ private:
         if (!in_group) fail(m_pos, "a ']' or ')' closes no group");
         ++m_pos;
         return items;
-      } else if (match(R"((knit|purl|k|p)\s+to\s+end)", m) || match(R"((knit|purl))", m)) {
+      } else if (match(R"((knit|purl|k|p)\s+to\s+(?:end|last\s+(\d+)\s+(?:sts?|stitch(?:es)?)))", m) || match(R"((knit|purl))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str()[0] == 'k';
         items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
+        if (m.size() > 2 && m[2].matched) items.back().leave = count_of(m[2].str());
       } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(wyib|wyif))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const int n = m[1].length() ? count_of(m[1].str()) : 1;
@@ -417,6 +419,7 @@ struct WrittenRow {
   std::vector<Item> before, repeat, after;  ///< flat: no groups, stars or repeats; stitches as seen from the front
   bool right_side = true;
   bool starred = false;  ///< written with a `*` repeat; without one (and not a fill) the row is as wide as written
+  int partial_fill = 0;  ///< the column of a `k to end` or `k to last N sts` beside other stitches (shaped pieces only), or 0
   int line = 0;
   int edges() const { return loops_taken(before) + loops_taken(after); }
   /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
@@ -456,8 +459,7 @@ WrittenRow split_row(std::vector<Item> written, bool right_side, int line, const
   for (const auto* part : {&row.before, &row.repeat, &row.after})
     for (const auto& item : *part) {
       if (item.kind == Item::Star || item.kind == Item::Repeat) throw Error(source, where, "holds more than one '*' repeat; write one repeat per row");
-      if (item.kind == Item::Fill && (flat.size() != 1))
-        throw Error(source, where + ", column " + std::to_string(item.column), "'knit', 'purl', 'k to end' or 'p to end' stands alone in its row");
+      if (item.kind == Item::Fill && (flat.size() != 1 || item.leave > 0) && row.partial_fill == 0) row.partial_fill = item.column;
     }
   if (loops_taken(row.repeat) < 1) throw Error(source, where, "its repeat takes no loop from the row below");
   return row;
@@ -552,6 +554,32 @@ RowsAgain rows_again(const std::smatch& m, int written, int line, int heading_ro
 }
 }  // namespace
 
+/// Gives the row's fill (`knit`, `k to end`, `k to last N sts`) its stitches: as many as the `below` loops leave
+/// after the other stitches, the N last ones taking exactly N loops. Returns false when the row has no room for it
+/// (it then is not a shaped piece's row); throws for a fill the row cannot hold (two of them, or "to last N" where
+/// the stitches after it take another number of loops).
+bool fill_to(WrittenRow& row, int below, const std::string& source) {
+  auto& items = row.repeat;
+  const auto fill = std::find_if(items.begin(), items.end(), [](const Item& i) { return i.kind == Item::Fill; });
+  if (fill == items.end()) return true;
+  const auto where = [&](const Item& i) { return "line " + std::to_string(row.line) + ", column " + std::to_string(i.column); };
+  if (std::any_of(fill + 1, items.end(), [](const Item& i) { return i.kind == Item::Fill; }))
+    throw Error(source, where(*(fill + 1)), "a row holds one 'k to end' or 'k to last N sts'");
+  const std::vector<Item> before(items.begin(), fill), after(fill + 1, items.end());
+  if (loops_taken(after) != fill->leave)
+    throw Error(source, where(*fill), "'" + fill->written + "' is followed by stitches that take " + std::to_string(loops_taken(after)) + " loops, not " +
+                                          std::to_string(fill->leave));
+  const int count = below - loops_taken(before) - loops_taken(after);
+  if (count < 0) return false;
+  Item stitch = *fill;
+  stitch.kind = Item::Stitch;
+  std::vector<Item> out = before;
+  out.insert(out.end(), static_cast<size_t>(count), stitch);
+  out.insert(out.end(), after.begin(), after.end());
+  items = std::move(out);
+  return true;
+}
+
 /// A shaped piece's rows as written, each row whole; "Cast on N sts." in the description must match the first row.
 Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string& description, const std::string& source) {
   p.whole = true;
@@ -561,12 +589,7 @@ Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string
     throw Error(source, "line " + std::to_string(rows[0].line),
                 "takes " + std::to_string(loops_taken(rows[0].repeat)) + " stitches, but the pattern casts on " + m[1].str());
   std::vector<int> row_line;
-  int below = 0;
   for (auto& row : rows) {
-    if (row.repeat.size() == 1 && row.repeat[0].kind == Item::Fill) {  // `knit`: as wide as the row below
-      const Item fill = row.repeat[0];
-      row.repeat.assign(static_cast<size_t>(below), fill);
-    }
     std::vector<std::string> types;
     std::vector<int> colours;
     for (const auto& item : row.front(1)) {
@@ -581,7 +604,6 @@ Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string
         colours.push_back(std::max(item.colour, 0));
       }
     }
-    below = loops_made(row.repeat);
     p.rows.push_back(std::move(types));
     if (!p.palette.empty()) p.colours.push_back(std::move(colours));
     row_line.push_back(row.line);
@@ -723,21 +745,28 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   // A shaped piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat,
   // every row written whole and taking the loops the row below made, and not every row as wide. It is knitted
   // once, as written: `knit` and `purl` rows as wide as the row below.
-  const auto fill_row = [](const WrittenRow& row) { return row.repeat.size() == 1 && row.repeat[0].kind == Item::Fill; };
-  static const std::regex cast_on(R"(\bcast\s+on\s+\d+\s*(?:sts|stitches)\b)", std::regex::icase);
-  if (std::regex_search(description, cast_on) && std::none_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; }) &&
-      !fill_row(rows[0])) {
+  // `k to end` and `k to last N sts` take what the row below leaves them.
+  static const std::regex cast_on(R"(\bcast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
+  std::smatch cast;
+  if (std::regex_search(description, cast, cast_on) && std::none_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; })) {
+    const int cast_on_count = count_of(cast[1].str());
+    std::vector<WrittenRow> resolved = rows;
     bool stacks = true, shaped = false;
-    int below = loops_made(rows[0].repeat);
-    for (size_t r = 1; r < rows.size() && stacks; ++r) {
-      if (fill_row(rows[r])) continue;
-      stacks = loops_taken(rows[r].repeat) == below;
-      shaped = shaped || loops_taken(rows[r].repeat) != loops_taken(rows[0].repeat) || below != loops_taken(rows[0].repeat);
-      below = loops_made(rows[r].repeat);
+    int below = cast_on_count;
+    for (size_t r = 0; r < resolved.size() && stacks; ++r) {
+      if (!fill_to(resolved[r], below, source)) stacks = false;
+      const int taken = loops_taken(resolved[r].repeat), made = loops_made(resolved[r].repeat);
+      stacks = stacks && (r == 0 || taken == below);
+      shaped = shaped || taken != cast_on_count || made != cast_on_count;
+      below = made;
     }
-    shaped = shaped || below != loops_taken(rows[0].repeat);
-    if (stacks && shaped) return shaped_piece(std::move(p), rows, description, source);
+    if (stacks && shaped) return shaped_piece(std::move(p), resolved, description, source);
   }
+  for (const auto& row : rows)
+    if (row.partial_fill > 0)
+      throw Error(source, "line " + std::to_string(row.line) + ", column " + std::to_string(row.partial_fill),
+                  "'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern (beside other stitches, or 'to last N sts', "
+                  "only in a shaped piece that says 'Cast on N sts.')");
 
   // One repeat as wide as every row's: the least common multiple of their repeats' widths. Each row is laid out
   // whole, edge stitches and all, at one width, as seen from the front; the repeat is the window of that width

@@ -500,4 +500,19 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
   EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "s.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5");
   EXPECT_NE(error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n").find("this row takes 4 loops but the row below it (line 2) makes 3"), std::string::npos)
       << error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n");
+  // Shaping as sweater patterns write it: "K1, ssk, k to last 3 sts, k2tog, k1", the fill as wide as the row below leaves.
+  const auto cuff = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/shaped-cuff.txt");
+  ASSERT_TRUE(cuff.whole);
+  ASSERT_EQ(cuff.height(), 12);
+  std::vector<std::string> dec_row{"k", "d12k"};  // worked right to left: the k2tog on the left as seen from the front
+  dec_row.insert(dec_row.end(), 10, "k");
+  dec_row.insert(dec_row.end(), {"d21k", "k"});
+  EXPECT_EQ(cuff.rows[2], dec_row);
+  EXPECT_EQ(cuff.rows[3], std::vector<std::string>(14, "k"));  // a wrong-side purl row, 14 wide after the decreases
+  EXPECT_EQ(cuff.rows[11].size(), 10u);
+  EXPECT_TRUE(mesh::validate(mesh::pattern_stitch_mesh(cuff, 1, 1)).valid());
+  EXPECT_EQ(error("Cast on 6 sts.\nRow 1: K1, k to last 3 sts, k2tog.\n"), "s.txt: line 2, column 12: 'k to last 3 sts' is followed by stitches that take 2 loops, not 3");
+  EXPECT_EQ(error("Row 1: K2, k to end.\nRow 2: Purl.\n"),
+            "s.txt: line 1, column 12: 'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern (beside other stitches, or "
+            "'to last N sts', only in a shaped piece that says 'Cast on N sts.')");
 }
