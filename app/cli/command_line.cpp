@@ -1107,7 +1107,8 @@ int run_command_line(int argc, char** argv) {
         ids_mesh = stitch_mesh;
       }
       if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
-      spdlog::info("{}: {} x {} repeat: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(), yarn.curves(), yarn.points.size());
+      spdlog::info("{}: {} x {} {}: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(),
+                   pattern.whole ? "piece (cast on x rows)" : "repeat", yarn.curves(), yarn.points.size());
       // Yarn in colours: how much of each, as emitted (the tiling's, or with --relax the patch's).
       const auto colour_report = [&](const mesh::YarnCurves& y) {
         json colours = json::array();

@@ -12,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "stitchmesh/written_pattern.hpp"
+#include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/text.hpp"
 
 namespace skein::mesh {
@@ -145,7 +146,7 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
       started = true;
       continue;
     }
-    if (read_colour_declaration(content, false, 0, at(line_no, 0))) {
+    if (read_colour_declaration(content, false, 0, source, at(line_no, 0))) {
       // "colour B: red #b3261e": passed on to the written reader, which keeps the palette; a key gives the
       // colour's stitches ("key X k1 B / p1 B").
       if (!drawn.empty()) throw Error(source, at(line_no, 0), "a colour declaration after the chart's rows: declare the colours first");
@@ -358,6 +359,15 @@ std::string chart_text(const Pattern& pattern, bool round) {
   // Cables over their cells, a symbol each kind (C, D, E, ...).
   std::map<std::string, char> cable_symbol;
   for (const auto& c : pattern.cables) {
+    if (!pattern.colours.empty()) {  // a cable's cells hold its symbol: no room for a colour
+      int loop = 0;
+      for (size_t f = 0; f < pattern.rows[static_cast<size_t>(c.row)].size(); ++f) {
+        if (loop >= c.first_loop && loop < c.first_loop + c.over + c.under && pattern.colours[static_cast<size_t>(c.row)][f] != 0)
+          throw Error("", "row " + std::to_string(c.row + 1) + ", loop " + std::to_string(c.first_loop + 1),
+                      "a cable in a colour other than the first (" + pattern.palette[0].name + ") has no chart symbol yet");
+        loop += find_stitch_type(pattern.rows[static_cast<size_t>(c.row)][f])->top;
+      }
+    }
     const std::string name = cable_abbreviation(c);
     if (!cable_symbol.count(name)) {
       if (cable_symbol.size() >= 20) throw Error("", "row " + std::to_string(c.row + 1), "more than 20 kinds of cable for one chart");
@@ -376,7 +386,7 @@ std::string chart_text(const Pattern& pattern, bool round) {
   out << "# the fabric from the right side, row 1 at the bottom (patterns/FORMAT.md, \"Charts\"); written by skein\n";
   out << (round ? "format chart round" : "format chart") << "\n";
   for (const auto& c : pattern.palette)
-    out << "colour " << c.name << ": " << (c.description.empty() ? "" : c.description + " ") << colour_code(c.srgb) << "\n";
+    out << "colour " << c.name << (c.alias.empty() ? "" : " (" + c.alias + ")") << ": " << (c.description.empty() ? "" : c.description + " ") << colour_code(c.srgb) << "\n";
   for (const auto& [symbol, meaning] : kWrittenKeys)
     if (used.count(symbol)) out << "key " << symbol << " " << meaning << "\n";
   for (const auto& [cell, symbol] : coloured) {
@@ -424,6 +434,7 @@ std::string write_chart_pattern(const Pattern& pattern) {
 }
 
 std::string write_written_pattern(const Pattern& pattern) {
+  if (pattern.whole) throw Error("", "written instructions", "a shaped piece (rows of their own widths) is not written out yet: skein writes repeats");
   const std::string chart = write_chart_pattern(pattern);
   ChartReading reading = read_chart(chart, "chart");
   // As books write them: runs of plain knits and purls counted (k, k, k → k3).

@@ -36,23 +36,30 @@ constexpr unsigned kDefaultColours[] = {0xf0e6cf, 0x1f2a44, 0xb3261e, 0x3f7d3a, 
 
 }  // namespace
 
-std::optional<PatternColour> read_colour_declaration(const std::string& line, bool prefix_optional, int index, const std::string& where) {
-  static const std::regex with_prefix(R"(^\s*(?:colou?r|yarn)\s+([A-Za-z0-9]+)\s*(?:\(\s*[A-Za-z0-9]+\s*\)\s*)?[:=]\s*(.*?)\s*$)", std::regex::icase);
-  static const std::regex bare(R"(^\s*(MC|CC[1-9]?|[A-H])\s*(?:\(\s*[A-Za-z0-9]+\s*\)\s*)?[:=]\s*(.*?)\s*$)", std::regex::icase);
+std::optional<PatternColour> read_colour_declaration(const std::string& line, bool prefix_optional, int index, const std::string& source,
+                                                     const std::string& where) {
+  static const std::regex with_prefix(R"(^\s*(?:colou?r|yarn)\s+([A-Za-z0-9]+)\s*(?:\(\s*([A-Za-z0-9]+)\s*\)\s*)?[:=]\s*(.*?)\s*$)", std::regex::icase);
+  static const std::regex bare(R"(^\s*(MC|CC[1-9]?|[A-Z])\s*(?:\(\s*([A-Za-z0-9]+)\s*\)\s*)?[:=]\s*(.*?)\s*$)", std::regex::icase);
   std::smatch m;
   if (!std::regex_match(line, m, with_prefix) && !(prefix_optional && std::regex_match(line, m, bare))) return std::nullopt;
   PatternColour c;
   c.name = m[1].str();
-  const std::string lowered = lower(c.name);
-  if (c.name.size() > 8) throw Error("", where, "a colour's name is at most 8 letters or digits, found '" + c.name + "'");
-  if (lowered == "k" || lowered == "p" || find_stitch_type(lowered) || std::isdigit(static_cast<unsigned char>(lowered[0])))
-    throw Error("", where, "'" + c.name + "' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
-  std::string body = m[2].str();
-  static const std::regex hex(R"(#([0-9A-Fa-f]*))");
+  c.alias = m[2].str();
+  for (const std::string& name : {c.name, c.alias}) {
+    if (name.empty()) continue;
+    const std::string lowered = lower(name);
+    if (name.size() > 8) throw Error(source, where, "a colour's name is at most 8 letters or digits, found '" + name + "'");
+    if (lowered == "k" || lowered == "p" || find_stitch_type(lowered) || std::isdigit(static_cast<unsigned char>(lowered[0])))
+      throw Error(source, where, "'" + name + "' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
+  }
+  std::string body = m[3].str();
+  static const std::regex hex(R"(#([0-9A-Za-z]*))"), bare_hex(R"(\b([0-9A-Fa-f]{6})\b)");
   std::smatch h;
   bool have = false;
-  if (std::regex_search(body, h, hex)) {
-    if (h[1].length() != 6) throw Error("", where, "a colour code is # and six hex digits (#f0e6cf), found '" + h.str(0) + "'");
+  if (!std::regex_search(body, h, hex)) std::regex_search(body, h, bare_hex);  // "1f2a44": a code without its '#'
+  if (!h.empty() && (h.str(0)[0] == '#' || std::any_of(h.str(0).begin(), h.str(0).end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))) {
+    if (h[1].length() != 6 || !std::all_of(h[1].first, h[1].second, [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); }))
+      throw Error(source, where, "a colour code is # and six hex digits (#f0e6cf), found '" + h.str(0) + "'");
     c.srgb = from_hex(static_cast<unsigned>(std::stoul(h[1].str(), nullptr, 16)));
     have = true;
     body.erase(static_cast<size_t>(h.position(0)), static_cast<size_t>(h.length(0)));
@@ -78,14 +85,14 @@ std::optional<PatternColour> read_colour_declaration(const std::string& line, bo
 }
 
 size_t comment_start(const std::string& line) {
-  for (size_t at = line.find('#'); at != std::string::npos; at = line.find('#', at + 1)) {
-    size_t digits = 0;
-    while (at + 1 + digits < line.size() && std::isxdigit(static_cast<unsigned char>(line[at + 1 + digits]))) ++digits;
-    const size_t after = at + 1 + digits;
-    const bool code = digits == 6 && (after == line.size() || !std::isalnum(static_cast<unsigned char>(line[after])));
-    if (!code) return at;
-  }
+  for (size_t at = line.find('#'); at != std::string::npos; at = line.find('#', at + 1))
+    if (at + 1 == line.size() || !std::isalnum(static_cast<unsigned char>(line[at + 1]))) return at;
   return std::string::npos;
+}
+
+void check_new_colour(const std::vector<PatternColour>& palette, const PatternColour& c, const std::string& source, const std::string& where) {
+  for (const std::string& name : {c.name, c.alias})
+    if (!name.empty() && find_colour(palette, name) >= 0) throw Error(source, where, "colour '" + name + "' is declared twice");
 }
 
 std::string colour_code(const std::array<double, 3>& srgb) {
@@ -98,7 +105,7 @@ std::string colour_code(const std::array<double, 3>& srgb) {
 int find_colour(const std::vector<PatternColour>& palette, const std::string& name) {
   const std::string wanted = lower(name);
   for (size_t i = 0; i < palette.size(); ++i)
-    if (lower(palette[i].name) == wanted) return static_cast<int>(i);
+    if (lower(palette[i].name) == wanted || (!palette[i].alias.empty() && lower(palette[i].alias) == wanted)) return static_cast<int>(i);
   return -1;
 }
 

@@ -100,12 +100,14 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     }
     if (p.format != PatternFormat::Woven) {
       // Colour (issue 26): `colour A: cream #f0e6cf` lines, then after `colours` a colour name per stitch.
-      if (auto c = read_colour_declaration(line, false, static_cast<int>(p.palette.size()), at(line_no, 0))) {
+      if (auto c = read_colour_declaration(line, false, static_cast<int>(p.palette.size()), source, at(line_no, 0))) {
         if (in_colours || !lines.empty()) throw Error(source, at(line_no, 0), "a colour declaration after the rows: declare the colours first");
-        if (find_colour(p.palette, c->name) >= 0) throw Error(source, at(line_no, 0), "colour '" + c->name + "' is declared twice");
+        check_new_colour(p.palette, *c, source, at(line_no, 0));
         p.palette.push_back(std::move(*c));
         continue;
       }
+      if (tokens.size() > 1 && (tokens[0].text == "colour" || tokens[0].text == "color"))
+        throw Error(source, at(line_no, 0), "a colour is declared 'colour NAME: DESCRIPTION' (colour MC: cream #f0e6cf), found '" + trim(line) + "'");
       if (tokens.size() == 1 && (tokens[0].text == "colours" || tokens[0].text == "colors")) {
         if (in_colours) throw Error(source, at(line_no, 0), "a second 'colours' block");
         if (p.palette.empty()) throw Error(source, at(line_no, 0), "'colours' with no colour declared: declare them first ('colour A: cream')");
@@ -176,7 +178,8 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
     // name for the whole row; no colours block: every stitch in the first colour.
     if (!colour_lines.empty() && colour_lines.size() != lines.size())
       throw Error(source, at(colour_lines.front().line, 0),
-                  "the colours block has " + std::to_string(colour_lines.size()) + " lines but the pattern " + std::to_string(lines.size()) + " rows");
+                  "the colours block has " + std::to_string(colour_lines.size()) + (colour_lines.size() == 1 ? " line" : " lines") +
+                      " but the pattern " + std::to_string(lines.size()) + (lines.size() == 1 ? " row" : " rows"));
     for (size_t r = 0; r < p.rows.size(); ++r) {
       std::vector<int> colours(p.rows[r].size(), 0);
       if (!colour_lines.empty()) {

@@ -314,7 +314,8 @@ Project parse_project(const std::string& text, const std::string& name) {
       const auto fail = [&](const std::string& rule) { throw Error(name, "line " + std::to_string(c.line), rule); };
       if (c.colour >= static_cast<int>(stitch.palette.size()))
         fail("colour " + std::to_string(c.colour) + " is not one of the " + std::to_string(stitch.palette.size()) + " colours given");
-      if (c.last < c.first || c.last >= static_cast<int>(stitch.faces.size()))
+      if (c.last < c.first) fail("face-colour's last face " + std::to_string(c.last) + " comes before its first " + std::to_string(c.first));
+      if (c.last >= static_cast<int>(stitch.faces.size()))
         fail("faces " + std::to_string(c.first) + " to " + std::to_string(c.last) + " are not faces of the stitch mesh (it has " +
              std::to_string(stitch.faces.size()) + ")");
       for (int f = c.first; f <= c.last; ++f) stitch.faces[static_cast<size_t>(f)].colour = c.colour;

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -232,9 +233,17 @@ private:
   /// colour is named here.
   bool colour_change() {
     std::smatch m;
-    if (m_palette.empty() || !match(R"((?:with|using|change\s+to|switch\s+to|join)\s+([a-z0-9]+))", m)) return false;
+    if (!match(R"((?:with|using|change\s+to|switch\s+to|join)\s+([a-z0-9]+))", m)) return false;
+    static const std::set<std::string> not_colours = {"rs", "ws", "right", "wrong", "yarn", "the", "a"};  // "With RS facing, ..."
+    if (not_colours.count(m[1].str()) && find_colour(m_palette, m[1].str()) < 0) return false;
     const int c = find_colour(m_palette, m[1].str());
-    if (c < 0) return false;
+    if (c < 0) {
+      std::string names;
+      for (const auto& d : m_palette) names += (names.empty() ? "" : ", ") + d.name + (d.alias.empty() ? "" : " (" + d.alias + ")");
+      fail(m_pos + static_cast<size_t>(m.position(1)),
+           "'" + m.str(0) + "' names a colour the pattern does not declare " +
+               (names.empty() ? std::string("(declare it before the rows: 'MC: cream', 'CC: navy')") : "(" + names + ")"));
+    }
     m_pos += static_cast<size_t>(m.length(0));
     m_colour = c;
     return true;
@@ -304,11 +313,11 @@ private:
         if (!in_group) fail(m_pos, "a ']' or ')' closes no group");
         ++m_pos;
         return items;
-      } else if (match(R"((knit|purl|k|p)\s+to\s+(?:end|last\s+(\d+)\s+(?:sts?|stitch(?:es)?)))", m) || match(R"((knit|purl))", m)) {
+      } else if (match(R"((knit|purl|k|p)\s+to\s+(?:end|(last)\s+(?:(\d+)\s+)?(?:sts?|stitch(?:es)?)))", m) || match(R"((knit|purl))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str()[0] == 'k';
         items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
-        if (m.size() > 2 && m[2].matched) items.back().leave = count_of(m[2].str());
+        if (m.size() > 2 && m[2].matched) items.back().leave = m[3].matched ? count_of(m[3].str()) : 1;  // "k to last st": one
       } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(wyib|wyif))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const int n = m[1].length() ? count_of(m[1].str()) : 1;
@@ -702,8 +711,8 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
                     "a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' (patterns/FORMAT.md)");
       if (!started) {
         // "MC: cream", "Colour A: navy #1f2a44": a colour of the palette (issue 26).
-        if (auto c = read_colour_declaration(line, true, static_cast<int>(p.palette.size()), "line " + std::to_string(line_no))) {
-          if (find_colour(p.palette, c->name) >= 0) throw Error(source, "line " + std::to_string(line_no), "colour '" + c->name + "' is declared twice");
+        if (auto c = read_colour_declaration(line, true, static_cast<int>(p.palette.size()), source, "line " + std::to_string(line_no))) {
+          check_new_colour(p.palette, *c, source, "line " + std::to_string(line_no));
           p.palette.push_back(std::move(*c));
           continue;
         }
@@ -742,31 +751,29 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
   if (p.note.empty()) p.note = description;
 
-  // A shaped piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat,
-  // every row written whole and taking the loops the row below made, and not every row as wide. It is knitted
-  // once, as written: `knit` and `purl` rows as wide as the row below.
+  // A piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat, and every
+  // row written whole, taking the loops the row below made. It is knitted once, as written, shaped or not: `knit`,
   // `k to end` and `k to last N sts` take what the row below leaves them.
   static const std::regex cast_on(R"(\bcast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
   std::smatch cast;
   if (std::regex_search(description, cast, cast_on) && std::none_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; })) {
     const int cast_on_count = count_of(cast[1].str());
     std::vector<WrittenRow> resolved = rows;
-    bool stacks = true, shaped = false;
+    bool stacks = true;
     int below = cast_on_count;
     for (size_t r = 0; r < resolved.size() && stacks; ++r) {
       if (!fill_to(resolved[r], below, source)) stacks = false;
       const int taken = loops_taken(resolved[r].repeat), made = loops_made(resolved[r].repeat);
       stacks = stacks && (r == 0 || taken == below);
-      shaped = shaped || taken != cast_on_count || made != cast_on_count;
       below = made;
     }
-    if (stacks && shaped) return shaped_piece(std::move(p), resolved, description, source);
+    if (stacks) return shaped_piece(std::move(p), resolved, description, source);
   }
   for (const auto& row : rows)
     if (row.partial_fill > 0)
       throw Error(source, "line " + std::to_string(row.line) + ", column " + std::to_string(row.partial_fill),
-                  "'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern (beside other stitches, or 'to last N sts', "
-                  "only in a shaped piece that says 'Cast on N sts.')");
+                  "'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern; beside other stitches, or 'to last N sts', "
+                  "only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
 
   // One repeat as wide as every row's: the least common multiple of their repeats' widths. Each row is laid out
   // whole, edge stitches and all, at one width, as seen from the front; the repeat is the window of that width

@@ -409,7 +409,7 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
 }
 
 TEST(PatternColours, DeclaredAsPatternsNameThem) {
-  const auto read = [](const std::string& line, bool bare = true) { return mesh::read_colour_declaration(line, bare, 0, "line 1"); };
+  const auto read = [](const std::string& line, bool bare = true) { return mesh::read_colour_declaration(line, bare, 0, "", "line 1"); };
   const auto hex = [](const std::optional<mesh::PatternColour>& c) { return c ? mesh::colour_code(c->srgb) : std::string("none"); };
   EXPECT_EQ(hex(read("MC: cream")), "#f0e6cf");                             // a colour word
   EXPECT_EQ(hex(read("Colour A (MC): natural #E9DCC3")), "#e9dcc3");        // a code beats the word
@@ -423,7 +423,16 @@ TEST(PatternColours, DeclaredAsPatternsNameThem) {
   EXPECT_EQ(error_of([&] { read("colour A: red #b326"); }), "line 1: a colour code is # and six hex digits (#f0e6cf), found '#b326'");
   EXPECT_EQ(error_of([&] { read("colour k: red"); }), "line 1: 'k' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
   EXPECT_EQ(mesh::comment_start("colour A: cream #f0e6cf  # the main colour"), 25u);
-  EXPECT_EQ(mesh::comment_start("k p #f0e6cfx"), 4u);
+  EXPECT_EQ(mesh::comment_start("k p # note"), 4u);
+  // A code without its '#', a code that is not one, a second name in brackets, a stitch letter as a name.
+  EXPECT_EQ(hex(read("CC: 1f2a44")), "#1f2a44");
+  EXPECT_EQ(error_of([&] { read("A: natural #e9dcg3"); }), "line 1: a colour code is # and six hex digits (#f0e6cf), found '#e9dcg3'");
+  EXPECT_EQ(read("Colour A (MC): natural")->alias, "MC");
+  EXPECT_EQ(error_of([&] { read("K: cream"); }), "line 1: 'K' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("Colour A (MC): natural\nMC: white\nRow 1: knit.\n", "d.txt"); }), "d.txt: line 2: colour 'MC' is declared twice");
+  EXPECT_EQ(mesh::parse_pattern("Colour A (MC): natural\nColour B (CC): red\nRnd 1: k1, with CC, k1.\n", "a.txt").colours[0], (std::vector<int>{1, 0}));
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("MC: white\nRnd 1: k1, with DC, k1.\n", "u.txt"); }),
+            "u.txt: line 2, column 17: 'with dc' names a colour the pattern does not declare (MC)");
 }
 
 TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
@@ -443,7 +452,7 @@ TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
   EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA B\n"), "c.knit: line 5, column 3: 'B' is not a declared colour (A)");
   EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA A A\n"),
             "c.knit: line 5: gives 3 colours for row 1 (line 3), which has 2 stitches (a cable's each): one colour per stitch, or one for the whole row");
-  EXPECT_EQ(error("format knit\ncolour A: red\nk k\nk k\ncolours\nA\n"), "c.knit: line 6: the colours block has 1 lines but the pattern 2 rows");
+  EXPECT_EQ(error("format knit\ncolour A: red\nk k\nk k\ncolours\nA\n"), "c.knit: line 6: the colours block has 1 line but the pattern 2 rows");
   EXPECT_EQ(error("format knit\nk k\ncolours\nA\n"), "c.knit: line 3: 'colours' with no colour declared: declare them first ('colour A: cream')");
   EXPECT_EQ(error("format knit\ncolour A: red\ncolour a: blue\nk k\n"), "c.knit: line 3: colour 'a' is declared twice");
   EXPECT_EQ(error("format knit\nk k\ncolour A: red\n"), "c.knit: line 3: a colour declaration after the rows: declare the colours first");
@@ -512,7 +521,12 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
   EXPECT_EQ(cuff.rows[11].size(), 10u);
   EXPECT_TRUE(mesh::validate(mesh::pattern_stitch_mesh(cuff, 1, 1)).valid());
   EXPECT_EQ(error("Cast on 6 sts.\nRow 1: K1, k to last 3 sts, k2tog.\n"), "s.txt: line 2, column 12: 'k to last 3 sts' is followed by stitches that take 2 loops, not 3");
+  // "k to last st" leaves one; rows all as wide after a cast-on are a piece too, knitted once.
+  EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): Ssk, k to last st, k1.\n", "l.txt").rows[0], (std::vector<std::string>{"k", "k", "d21k"}));
+  const auto square = mesh::parse_pattern("Cast on 4 sts.\nRow 1: Knit.\nRow 2: Purl.\nRow 3: Knit.\n", "q.txt");
+  EXPECT_TRUE(square.whole);
+  EXPECT_EQ(square.height(), 3);
   EXPECT_EQ(error("Row 1: K2, k to end.\nRow 2: Purl.\n"),
-            "s.txt: line 1, column 12: 'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern (beside other stitches, or "
-            "'to last N sts', only in a shaped piece that says 'Cast on N sts.')");
+            "s.txt: line 1, column 12: 'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern; beside other stitches, or "
+            "'to last N sts', only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
 }
