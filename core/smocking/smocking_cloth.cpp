@@ -69,48 +69,83 @@ struct Fabric {
   std::vector<double> sewn_length;
 };
 
+/// Point-triangle and edge-edge pairs that share no vertex and whose boxes overlap (broad phase): each element's
+/// box spans its vertices at x and, with `dir`, at x + dir (the box swept over a step), padded by `pad`. Calls
+/// f(true, v, t) for point v and triangle t, f(false, e, g) for edges e < g; each pair once.
+template <class F>
+void candidate_pairs(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd* dir, double pad, F&& found) {
+  const auto box = [&](std::initializer_list<int> vs, Vec3& lo, Vec3& hi) {
+    lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    hi = -lo;
+    for (int v : vs) {
+      lo = lo.cwiseMin(x.col(v));
+      hi = hi.cwiseMax(x.col(v));
+      if (dir) {
+        lo = lo.cwiseMin(x.col(v) + dir->col(v));
+        hi = hi.cwiseMax(x.col(v) + dir->col(v));
+      }
+    }
+    lo.array() -= pad;
+    hi.array() += pad;
+  };
+  const int tris = static_cast<int>(f.tris.size()), edges = static_cast<int>(f.edges.size());
+  std::vector<Vec3> tri_lo(tris), tri_hi(tris), edge_lo(edges), edge_hi(edges);
+  double cell = 0;
+  for (int t = 0; t < tris; ++t) {
+    box({f.tris[t][0], f.tris[t][1], f.tris[t][2]}, tri_lo[t], tri_hi[t]);
+    cell = std::max(cell, (tri_hi[t] - tri_lo[t]).maxCoeff());
+  }
+  for (int e = 0; e < edges; ++e) box({f.edges[e][0], f.edges[e][1]}, edge_lo[e], edge_hi[e]);
+  BoxGrid tri_grid(cell), edge_grid(cell);
+  for (int t = 0; t < tris; ++t) tri_grid.insert(t, tri_lo[t], tri_hi[t]);
+  for (int e = 0; e < edges; ++e) edge_grid.insert(e, edge_lo[e], edge_hi[e]);
+  const auto overlap = [](const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+    return (alo.array() <= bhi.array()).all() && (blo.array() <= ahi.array()).all();
+  };
+  std::vector<int> stamp(std::max(tris, edges), -1);  // the last query that saw an element (a box spans cells)
+  for (int v = 0; v < f.n; ++v) {
+    Vec3 lo, hi;
+    box({v}, lo, hi);
+    tri_grid.query(lo, hi, [&](int t) {
+      if (stamp[t] == v) return;
+      stamp[t] = v;
+      const auto& tr = f.tris[t];
+      if (tr[0] != v && tr[1] != v && tr[2] != v && overlap(lo, hi, tri_lo[t], tri_hi[t])) found(true, v, t);
+    });
+  }
+  std::fill(stamp.begin(), stamp.end(), -1);
+  for (int e = 0; e < edges; ++e)
+    edge_grid.query(edge_lo[e], edge_hi[e], [&](int g) {
+      if (g <= e || stamp[g] == e) return;
+      stamp[g] = e;
+      const auto [a0, a1] = f.edges[e];
+      const auto [b0, b1] = f.edges[g];
+      if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && overlap(edge_lo[e], edge_hi[e], edge_lo[g], edge_hi[g])) found(false, e, g);
+    });
+}
+
+/// The pair of elements (point v and triangle t, or edges e and g) with its closest points' weights at x.
+Pair closest_pair(const Fabric& f, const Eigen::Matrix3Xd& x, bool point_triangle, int a, int b) {
+  if (point_triangle) {
+    const auto& tr = f.tris[b];
+    const Vec3 w = closest_on_triangle(x.col(a), x.col(tr[0]), x.col(tr[1]), x.col(tr[2]));
+    return {{a, tr[0], tr[1], tr[2]}, {1, -w[0], -w[1], -w[2]}};
+  }
+  const auto [a0, a1] = f.edges[a];
+  const auto [b0, b1] = f.edges[b];
+  const auto [s, t] = closest_on_segments(x.col(a0), x.col(a1), x.col(b0), x.col(b1));
+  return {{a0, a1, b0, b1}, {1 - s, s, -(1 - t), -t}, true};
+}
+
 /// Pairs of elements (point-triangle, edge-edge) that share no vertex and lie within `radius` at x.
 std::vector<Pair> near_pairs(const Fabric& f, const Eigen::Matrix3Xd& x, double radius) {
   std::vector<Pair> pairs;
-  double cell = radius;
-  for (const auto& e : f.edges) cell = std::max(cell, (x.col(e[0]) - x.col(e[1])).norm());
-  BoxGrid tri_grid(cell), edge_grid(cell);
-  const Vec3 pad = Vec3::Constant(radius);
-  for (int t = 0; t < static_cast<int>(f.tris.size()); ++t) {
-    const auto& tr = f.tris[t];
-    tri_grid.insert(t, x.col(tr[0]).cwiseMin(x.col(tr[1])).cwiseMin(x.col(tr[2])), x.col(tr[0]).cwiseMax(x.col(tr[1])).cwiseMax(x.col(tr[2])));
-  }
-  for (int e = 0; e < static_cast<int>(f.edges.size()); ++e)
-    edge_grid.insert(e, x.col(f.edges[e][0]).cwiseMin(x.col(f.edges[e][1])), x.col(f.edges[e][0]).cwiseMax(x.col(f.edges[e][1])));
-  std::vector<int> seen;
-  for (int v = 0; v < f.n; ++v) {
-    const Vec3 p = x.col(v);
-    seen.clear();
-    tri_grid.query(p - pad, p + pad, [&](int t) { seen.push_back(t); });
-    std::sort(seen.begin(), seen.end());
-    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-    for (int t : seen) {
-      const auto& tr = f.tris[t];
-      if (tr[0] == v || tr[1] == v || tr[2] == v) continue;
-      const Vec3 b = closest_on_triangle(p, x.col(tr[0]), x.col(tr[1]), x.col(tr[2]));
-      const Vec3 q = b[0] * x.col(tr[0]) + b[1] * x.col(tr[1]) + b[2] * x.col(tr[2]);
-      if ((p - q).norm() < radius) pairs.push_back({{v, tr[0], tr[1], tr[2]}, {1, -b[0], -b[1], -b[2]}});
-    }
-  }
-  for (int e = 0; e < static_cast<int>(f.edges.size()); ++e) {
-    const auto [a0, a1] = f.edges[e];
-    seen.clear();
-    edge_grid.query(x.col(a0).cwiseMin(x.col(a1)) - pad, x.col(a0).cwiseMax(x.col(a1)) + pad, [&](int g) { if (g > e) seen.push_back(g); });
-    std::sort(seen.begin(), seen.end());
-    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-    for (int g : seen) {
-      const auto [b0, b1] = f.edges[g];
-      if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) continue;
-      const auto [s, t] = closest_on_segments(x.col(a0), x.col(a1), x.col(b0), x.col(b1));
-      const Vec3 r = (1 - s) * x.col(a0) + s * x.col(a1) - (1 - t) * x.col(b0) - t * x.col(b1);
-      if (r.norm() < radius) pairs.push_back({{a0, a1, b0, b1}, {1 - s, s, -(1 - t), -t}, true});
-    }
-  }
+  candidate_pairs(f, x, nullptr, radius, [&](bool point_triangle, int a, int b) {
+    Pair p = closest_pair(f, x, point_triangle, a, b);
+    Vec3 r = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) r += p.w[k] * x.col(p.v[k]);
+    if (r.norm() < radius) pairs.push_back(p);
+  });
   return pairs;
 }
 
@@ -212,22 +247,21 @@ struct Potential {
   }
 };
 
-/// The largest step fraction along `dir` after which no pair of `pairs` has come closer than a tenth of its
-/// distance at x: a pair's distance falls at most as fast as its two elements' fastest vertices move together
-/// (each point of an element is a convex combination of its vertices), so this bound is conservative.
-double collision_bound(const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& dir, const std::vector<Pair>& pairs) {
+/// additive_ccd of the pair (point v and triangle t, or edges e and g) of the fabric.
+double pair_ccd(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& dir, bool point_triangle, int a, int b) {
+  std::array<int, 4> v;
+  if (point_triangle) v = {a, f.tris[b][0], f.tris[b][1], f.tris[b][2]};
+  else v = {f.edges[a][0], f.edges[a][1], f.edges[b][0], f.edges[b][1]};
+  std::array<Vec3, 4> y, p;
+  for (int k = 0; k < 4; ++k) y[k] = x.col(v[k]), p[k] = dir.col(v[k]);
+  return additive_ccd(y, p, point_triangle);
+}
+
+/// The largest step fraction along `dir` after which no pair of elements has come closer than a tenth of its
+/// distance at x (additive_ccd over every pair whose boxes swept over the step overlap).
+double collision_bound(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& dir) {
   double alpha = 1;
-  for (const auto& p : pairs) {
-    const double d0 = difference(p, x).norm();
-    double first = 0, second = 0;  // the point or first edge's fastest vertex; the other element's
-    for (int k = 0; k < 4; ++k) {
-      const bool first_element = k == 0 || (k == 1 && p.edges);
-      const double speed = dir.col(p.v[k]).norm();
-      (first_element ? first : second) = std::max(first_element ? first : second, speed);
-    }
-    const double closing = first + second;
-    if (closing > 0) alpha = std::min(alpha, 0.9 * d0 / closing);
-  }
+  candidate_pairs(f, x, &dir, 0.0, [&](bool point_triangle, int a, int b) { alpha = std::min(alpha, pair_ccd(f, x, dir, point_triangle, a, b)); });
   return alpha;
 }
 
@@ -354,6 +388,7 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
   Eigen::Matrix3Xd x = cloth.rest;
   const double max_move = 4 * h, settled = options.tolerance * h;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  Eigen::SparseMatrix<double> analysed;  ///< the matrix the solver's symbolic analysis was made for
   for (int frame = 0; frame < options.frames; ++frame) {
     potential.anchor = x;
     ++cloth.frames;
@@ -365,7 +400,15 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
       if (!std::isfinite(e0)) throw Error(pattern.name, "frame " + std::to_string(frame), "the fabric's energy is not finite (a bug: please report it)");
       Eigen::SparseMatrix<double> hm(3 * f.n, 3 * f.n);
       hm.setFromTriplets(hess.begin(), hess.end());
-      solver.compute(hm);
+      // The symbolic analysis (ordering, elimination tree) is kept while the barrier's pairs leave the pattern as it was.
+      const bool same_pattern = hm.nonZeros() == analysed.nonZeros() && hm.cols() == analysed.cols() &&
+                                std::equal(hm.outerIndexPtr(), hm.outerIndexPtr() + hm.cols() + 1, analysed.outerIndexPtr()) &&
+                                std::equal(hm.innerIndexPtr(), hm.innerIndexPtr() + hm.nonZeros(), analysed.innerIndexPtr());
+      if (!same_pattern) {
+        solver.analyzePattern(hm);
+        analysed = hm;
+      }
+      solver.factorize(hm);
       if (solver.info() != Eigen::Success) throw Error(pattern.name, "frame " + std::to_string(frame), "the Newton system could not be factored");
       const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(grad.data(), grad.size());
       Eigen::VectorXd step = -solver.solve(g);
@@ -374,8 +417,7 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
       ++cloth.newton_iterations;
       if (largest < settled) break;
       if (largest > max_move) dir *= max_move / largest;
-      const double reach = 2 * std::min(largest, max_move) + 1e-9;
-      double alpha = collision_bound(x, dir, near_pairs(f, x, reach));
+      double alpha = collision_bound(f, x, dir);
       if (alpha < 1) ++cloth.ccd_limited_steps;
       const double slope = (grad.array() * dir.array()).sum();
       double e1 = e0;
@@ -402,6 +444,43 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
   for (std::size_t i = 0; i < f.guided.size(); ++i) sq += (x.col(f.guided[i]) - f.targets.col(static_cast<Eigen::Index>(i))).squaredNorm();
   cloth.target_error = f.guided.empty() ? 0 : std::sqrt(sq / static_cast<double>(f.guided.size()));
   return cloth;
+}
+
+double additive_ccd(const std::array<Eigen::Vector3d, 4>& x, const std::array<Eigen::Vector3d, 4>& dir, bool point_triangle) {
+  // Conservative advancement on the relative motion: with the pair's common translation taken out, its distance
+  // falls at most as fast as the fastest vertex of each element moves (every point of an element is a convex
+  // combination of its vertices), so each advance of 0.9 d / l_p is safe; it goes on from where it got, so a
+  // pair sliding past another is not held to its first distance.
+  std::array<Vec3, 4> p, y = x;
+  const Vec3 mean = 0.25 * (dir[0] + dir[1] + dir[2] + dir[3]);
+  double first = 0, second = 0;  // the first element's fastest vertex (the point, or the first edge), the other's
+  for (int k = 0; k < 4; ++k) {
+    p[k] = dir[k] - mean;
+    const bool first_element = k == 0 || (k == 1 && !point_triangle);
+    (first_element ? first : second) = std::max(first_element ? first : second, p[k].norm());
+  }
+  const double lp = first + second;
+  if (!(lp > 0)) return 1;
+  const auto distance = [&] {
+    if (point_triangle) {
+      const Vec3 w = closest_on_triangle(y[0], y[1], y[2], y[3]);
+      return (y[0] - w[0] * y[1] - w[1] * y[2] - w[2] * y[3]).norm();
+    }
+    const auto [s, t] = closest_on_segments(y[0], y[1], y[2], y[3]);
+    return ((1 - s) * y[0] + s * y[1] - (1 - t) * y[2] - t * y[3]).norm();
+  };
+  constexpr double keep = 0.1;  // the share of its distance a pair keeps
+  const double d0 = distance(), gap = keep * d0;
+  double t = 0, advance = (1 - keep) * d0 / lp;
+  for (int it = 0; it < 1000; ++it) {
+    for (int k = 0; k < 4; ++k) y[k] += advance * p[k];
+    const double d = distance();
+    if (t > 0 && d < gap) return t;
+    t += advance;
+    if (t >= 1) return 1;
+    advance = 0.9 * d / lp;
+  }
+  return t;  // a thousand advances and still short of the step: stop there, conservatively
 }
 
 long exact_intersections(const Cloth& cloth) {

@@ -57,6 +57,12 @@ double barrier_reach(const SmockingPattern& pattern, const Embedding& embedding,
 double first_frame_potential(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options,
                              const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd* grad);
 
+/// Additive continuous collision detection (Li et al. 2021, C-IPC Algorithm 1, with no thickness) of two elements
+/// moving along straight lines: a point x[0] and a triangle x[1..3], or two edges x[0..1] and x[2..3], each vertex
+/// moving by dir[k] over the step. Returns the largest step fraction t in [0, 1] after which the two are still at
+/// least a tenth of their distance at the start apart (conservative: never past a meeting).
+double additive_ccd(const std::array<Eigen::Vector3d, 4>& x, const std::array<Eigen::Vector3d, 4>& dir, bool point_triangle);
+
 /// Pairs of triangles that share no vertex and intersect, by CGAL's exact predicates (0 for a valid result).
 long exact_intersections(const Cloth& cloth);
 

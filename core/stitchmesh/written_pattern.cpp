@@ -589,6 +589,27 @@ bool fill_to(WrittenRow& row, int below, const std::string& source) {
   return true;
 }
 
+/// Appends one row of worked items to the pattern: its stitch types, a cable's crossing (its loops knitted) and
+/// each stitch's colour.
+void append_row(Pattern& p, const std::vector<Item>& items) {
+  std::vector<std::string> types;
+  std::vector<int> colours;
+  for (const auto& item : items) {
+    if (item.kind == Item::Cable) {
+      int made = 0;
+      for (const auto& t : types) made += find_stitch_type(t)->top;
+      p.cables.push_back({static_cast<int>(p.rows.size()), made, item.over, item.under, item.order});
+      types.insert(types.end(), item.over + item.under, "k");
+      colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
+    } else {
+      types.push_back(item.type);
+      colours.push_back(std::max(item.colour, 0));
+    }
+  }
+  p.rows.push_back(std::move(types));
+  if (!p.palette.empty()) p.colours.push_back(std::move(colours));
+}
+
 /// A shaped piece's rows as written, each row whole; "Cast on N sts." in the description must match the first row.
 Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string& description, const std::string& source) {
   p.whole = true;
@@ -599,22 +620,7 @@ Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string
                 "takes " + std::to_string(loops_taken(rows[0].repeat)) + " stitches, but the pattern casts on " + m[1].str());
   std::vector<int> row_line;
   for (auto& row : rows) {
-    std::vector<std::string> types;
-    std::vector<int> colours;
-    for (const auto& item : row.front(1)) {
-      if (item.kind == Item::Cable) {
-        int loops = 0;
-        for (const auto& t : types) loops += find_stitch_type(t)->top;
-        p.cables.push_back({static_cast<int>(p.rows.size()), loops, item.over, item.under, item.order});
-        types.insert(types.end(), item.over + item.under, "k");
-        colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
-      } else {
-        types.push_back(item.type);
-        colours.push_back(std::max(item.colour, 0));
-      }
-    }
-    p.rows.push_back(std::move(types));
-    if (!p.palette.empty()) p.colours.push_back(std::move(colours));
+    append_row(p, row.front(1));
     row_line.push_back(row.line);
   }
   check_stacking(p, row_line, source);
@@ -815,26 +821,13 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   if (start < 0) throw Error(source, "", "no window of " + std::to_string(width) + " stitches cuts every row between stitches");
   std::vector<int> row_line;
   for (size_t r = 0; r < rows.size(); ++r) {
-    std::vector<std::string> types;
-    std::vector<int> colours;
+    std::vector<Item> window;  // the items that start inside the repeat's window
     int x = 0;
     for (const auto& item : whole[r]) {
-      const int here = x;
+      if (x >= start && x < start + width) window.push_back(item);
       x += taken(item);
-      if (here < start || here >= start + width) continue;
-      if (item.kind == Item::Cable) {
-        int made = 0;
-        for (const auto& t : types) made += find_stitch_type(t)->top;
-        p.cables.push_back({static_cast<int>(p.rows.size()), made, item.over, item.under, item.order});
-        types.insert(types.end(), item.over + item.under, "k");
-        colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
-      } else {
-        types.push_back(item.type);
-        colours.push_back(std::max(item.colour, 0));
-      }
     }
-    p.rows.push_back(std::move(types));
-    if (!p.palette.empty()) p.colours.push_back(std::move(colours));
+    append_row(p, window);
     row_line.push_back(rows[r].line);
   }
   check_stacking(p, row_line, source);
