@@ -237,16 +237,16 @@ private:
     static const std::set<std::string> not_colours = {"rs", "ws", "right", "wrong", "yarn", "the", "a"};  // "With RS facing, ..."
     if (not_colours.count(m[1].str()) && find_colour(m_palette, m[1].str()) < 0) return false;
     const int c = find_colour(m_palette, m[1].str());
-    if (c < 0) {
-      std::string names;
-      for (const auto& d : m_palette) names += (names.empty() ? "" : ", ") + d.name + (d.alias.empty() ? "" : " (" + d.alias + ")");
-      fail(m_pos + static_cast<size_t>(m.position(1)),
-           "'" + m.str(0) + "' names a colour the pattern does not declare " +
-               (names.empty() ? std::string("(declare it before the rows: 'MC: cream', 'CC: navy')") : "(" + names + ")"));
-    }
+    if (c < 0) fail(m_pos + static_cast<size_t>(m.position(1)), "'" + m.str(0) + "' names a colour the pattern does not declare " + declared());
     m_pos += static_cast<size_t>(m.length(0));
     m_colour = c;
     return true;
+  }
+  /// The declared colours in brackets, or how to declare one.
+  std::string declared() const {
+    std::string names;
+    for (const auto& d : m_palette) names += (names.empty() ? "" : ", ") + d.name + (d.alias.empty() ? "" : " (" + d.alias + ")");
+    return names.empty() ? "(declare it before the rows: 'MC: cream', 'CC: navy')" : "(" + names + ")";
   }
   /// The colour of the stitches just read (items from `first` on): the one a following "A", "in MC" or "with B"
   /// names ("k1 A, k1 B" in stranded knitting), else the colour worked with.
@@ -378,6 +378,12 @@ private:
         if (std::find(std::begin(kNotModelled), std::end(kNotModelled), word) != std::end(kNotModelled))
           fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet" +
                        std::string(word == "kfb" || word == "pfb" ? "; the nearest increase into one stitch is '(k1, p1) in next st'" : ""));
+        // "k2 DC" in a pattern in colours: a word after a stitch reads as its colour.
+        const bool after_stitch = !m_palette.empty() && !items.empty() && at > 0 && std::isspace(static_cast<unsigned char>(m_text[at - 1])) &&
+                                  word.size() <= 3;
+        if (after_stitch)
+          fail(at, "'" + word + "' after a stitch would be its colour, but the pattern does not declare it " + declared() +
+                       "; as an abbreviation it is unknown: did you mean " + suggestions(word) + "?");
         fail(at, "unknown abbreviation '" + word + "'; did you mean " + suggestions(word) + "? (patterns/FORMAT.md lists what is read)");
       }
       colour_stitches(items, first);

@@ -433,6 +433,10 @@ TEST(PatternColours, DeclaredAsPatternsNameThem) {
   EXPECT_EQ(mesh::parse_pattern("Colour A (MC): natural\nColour B (CC): red\nRnd 1: k1, with CC, k1.\n", "a.txt").colours[0], (std::vector<int>{1, 0}));
   EXPECT_EQ(error_of([] { mesh::parse_pattern("MC: white\nRnd 1: k1, with DC, k1.\n", "u.txt"); }),
             "u.txt: line 2, column 17: 'with dc' names a colour the pattern does not declare (MC)");
+  // A colour after a stitch that is not declared is named as one (and as the abbreviation it is not).
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("MC: white\nCC: navy\nRnd 1: k2 DC, k2.\n", "k.txt"); }),
+            "k.txt: line 3, column 11: 'dc' after a stitch would be its colour, but the pattern does not declare it (MC, CC); as an "
+            "abbreviation it is unknown: did you mean 'k', 'p', 'yo'?");
 }
 
 TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
