@@ -405,7 +405,7 @@ int run_command_line(int argc, char** argv) {
   smock->add_option("--png", sm.png, "picture: the pattern as drawn, the --snapshots, and the gathered fabric, at one scale");
   smock->add_option("--chart-png", sm.chart_png, "picture: the threads' length over the iterations, the goal dashed");
   smock->add_option("--report", sm.report, "report (JSON; - for stdout)");
-  smock->add_option("--cloth", sm.cloth, "the smocked fabric in 3-D (§4.2) as an OBJ triangle mesh: a fine mesh guided to the lifted stitches, "
+  smock->add_option("--cloth", sm.cloth, "the smocked fabric in 3-D (§4.2) as a triangle mesh (.obj, or glTF .glb/.gltf): a fine mesh guided to the lifted stitches, "
                     "never passing through itself, certified by an exact triangle test");
   smock->add_option("--cloth-png", sm.cloth_png, "picture of the 3-D fabric, from the front and from the side");
   smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth: fine squares per side of a pattern square (even)")->capture_default_str();

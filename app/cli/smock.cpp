@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/gltf_mesh.hpp"
 #include "render/raster.hpp"
 #include "render/smocking_view.hpp"
 
@@ -47,13 +48,41 @@ void write_threads_obj(const smocking::Embedding& e, const smocking::Lift& lift,
   });
 }
 
-/// The smocked fabric as an OBJ triangle mesh [mm], z towards the front.
-void write_cloth_obj(const smocking::Cloth& cloth, const std::string& path) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "# skein smock: the smocked fabric (Zhou 2024 §4.2) [mm], z towards the front\n";
-    for (int v = 0; v < cloth.positions.cols(); ++v) out << "v " << cloth.positions(0, v) << " " << cloth.positions(1, v) << " " << cloth.positions(2, v) << "\n";
-    for (const auto& t : cloth.triangles) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  });
+/// The smocked fabric as a triangle mesh [mm], z towards the front: OBJ, or glTF (.glb, .gltf; in metres) with
+/// smooth normals and a two-sided fabric material, by the path's extension.
+void write_cloth(const smocking::Cloth& cloth, const std::string& path) {
+  const auto extension = std::filesystem::path(path).extension();
+  if (extension == ".obj") {
+    write_file_atomically(path, [&](std::ostream& out) {
+      out << "# skein smock: the smocked fabric (Zhou 2024 §4.2) [mm], z towards the front\n";
+      for (int v = 0; v < cloth.positions.cols(); ++v) out << "v " << cloth.positions(0, v) << " " << cloth.positions(1, v) << " " << cloth.positions(2, v) << "\n";
+      for (const auto& t : cloth.triangles) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+    });
+    return;
+  }
+  GltfMesh mesh;
+  mesh.mesh_name = "fabric";
+  mesh.node_name = "skein smocked fabric";
+  Eigen::Matrix3Xd normals = Eigen::Matrix3Xd::Zero(3, cloth.positions.cols());
+  GltfPrimitive fabric;
+  fabric.material = "fabric";
+  fabric.linear_rgb = {0.78, 0.70, 0.86};  // draw_cloth's light cloth colour
+  fabric.double_sided = true;
+  for (const auto& t : cloth.triangles) {
+    const Eigen::Vector3d n = (cloth.positions.col(t[1]) - cloth.positions.col(t[0])).cross(cloth.positions.col(t[2]) - cloth.positions.col(t[0]));
+    for (int v : t) {
+      normals.col(v) += n;  // area-weighted
+      fabric.indices.push_back(static_cast<std::uint32_t>(v));
+    }
+  }
+  for (int v = 0; v < cloth.positions.cols(); ++v) {
+    const double length = normals.col(v).norm();
+    const Eigen::Vector3d n = length > 0 ? Eigen::Vector3d(normals.col(v) / length) : Eigen::Vector3d::UnitZ();
+    mesh.positions.push_back({cloth.positions(0, v), cloth.positions(1, v), cloth.positions(2, v)});
+    mesh.normals.push_back({n.x(), n.y(), n.z()});
+  }
+  mesh.primitives.push_back(std::move(fabric));
+  write_gltf_mesh(mesh, path);
 }
 
 /// The smocked fabric from the front and at a slant from the side (the pleats' depth), a light cloth colour.
@@ -96,6 +125,8 @@ json smock(SmockArgs args) {
     if (!o.pull.allFinite() || o.pull.norm() == 0) throw Error("", "--pull", "a pulling direction of non-zero length, found \"" + args.pull + "\"");
   }
   if (!args.cloth.empty() || !args.cloth_png.empty()) args.cloth_options.validate();
+  if (const auto ext = std::filesystem::path(args.cloth).extension(); !args.cloth.empty() && ext != ".obj" && ext != ".glb" && ext != ".gltf")
+    throw Error(args.cloth, "--cloth", "writes .obj, .glb or .gltf, found '" + ext.string() + "'");
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.write_smock, args.cloth, args.cloth_png})
     if (!path.empty() && path != "-") check_writable(path);
   if (!args.write_smock.empty()) {
@@ -195,7 +226,7 @@ json smock(SmockArgs args) {
   if (!args.obj.empty()) write_threads_obj(e, lift, args.obj);
   if (!args.png.empty()) render::write_png(render::draw_smocking(pattern, e), args.png);
   if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.gamma), args.chart_png);
-  if (!args.cloth.empty()) write_cloth_obj(*cloth, args.cloth);
+  if (!args.cloth.empty()) write_cloth(*cloth, args.cloth);
   if (!args.cloth_png.empty()) render::write_png(draw_cloth(*cloth), args.cloth_png);
   if (!args.report.empty()) write_json(report, args.report);
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.cloth, args.cloth_png})

@@ -13,9 +13,9 @@
 #include <unordered_map>
 
 #include <Eigen/Geometry>
-#include <tiny_gltf.h>
 
 #include "common/atomic_file.hpp"
+#include "common/gltf_mesh.hpp"
 #include "common/input_file.hpp"
 #include "common/error.hpp"
 #include "relax/segment_distance.hpp"
@@ -277,96 +277,29 @@ void write_tube_obj(const YarnCurves& yarn, const std::filesystem::path& path, c
 
 void write_tube_gltf(const YarnCurves& yarn, const std::filesystem::path& path, const TubeOptions& options) {
   const auto blocks = tube_blocks(yarn, options);
-  // One primitive of triangles: positions in metres (glTF's unit; the yarn is in mm), normals, 32-bit indices.
-  // Yarn in colours: one primitive (and material) per colour.
+  // Yarn in colours: one primitive (and material) per colour; else one primitive with the viewer's material.
   const bool coloured = yarn.point_colour.size() == yarn.points.size() && !yarn.colours.empty();
-  std::vector<float> positions, normals;
-  std::vector<std::vector<std::uint32_t>> indices(coloured ? yarn.colours.size() : 1);
-  float low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
+  GltfMesh mesh;
+  mesh.mesh_name = "yarn";
+  mesh.node_name = "skein yarn, radius " + std::to_string(yarn.radius) + " mm";
+  mesh.primitives.resize(coloured ? yarn.colours.size() : 1);
+  if (coloured)
+    for (size_t k = 0; k < yarn.colours.size(); ++k) {
+      mesh.primitives[k].material = material_name(yarn.colours[k]);
+      mesh.primitives[k].linear_rgb = linear_colour(yarn.colours[k].srgb);
+    }
   for (const auto& b : blocks) {
-    const auto base = static_cast<std::uint32_t>(positions.size() / 3);
-    for (size_t i = 0; i < b.positions.size(); ++i)
-      for (int k = 0; k < 3; ++k) {
-        const float x = static_cast<float>(1e-3 * b.positions[i][k]);
-        positions.push_back(x), normals.push_back(static_cast<float>(b.normals[i][k]));
-        low[k] = std::min(low[k], x), high[k] = std::max(high[k], x);
-      }
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (size_t i = 0; i < b.positions.size(); ++i) {
+      mesh.positions.push_back({b.positions[i][0], b.positions[i][1], b.positions[i][2]});
+      mesh.normals.push_back({b.normals[i][0], b.normals[i][1], b.normals[i][2]});
+    }
     for (size_t i = 0; i < b.quads.size(); ++i)
       for (int v : {b.quads[i][0], b.quads[i][1], b.quads[i][2], b.quads[i][0], b.quads[i][2], b.quads[i][3]})
-        indices[coloured ? static_cast<size_t>(b.quad_colour[i]) : 0].push_back(base + static_cast<std::uint32_t>(v));
+        mesh.primitives[coloured ? static_cast<size_t>(b.quad_colour[i]) : 0].indices.push_back(base + static_cast<std::uint32_t>(v));
   }
-  if (positions.empty()) throw Error(path.string(), "", "the yarn has no curve of two or more points to make a tube of");
-  if (positions.size() / 3 > 0xffffffffull) throw Error(path.string(), "", "more tube vertices than 32-bit indices reach");
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "skein";
-  tinygltf::Buffer buffer;
-  const auto append = [&](const void* data, size_t bytes) {
-    const size_t offset = buffer.data.size();
-    buffer.data.resize(offset + bytes);
-    std::memcpy(buffer.data.data() + offset, data, bytes);
-    return offset;
-  };
-  const auto view = [&](const void* data, size_t bytes, int target) {
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = append(data, bytes);
-    v.byteLength = bytes;
-    v.target = target;
-    model.bufferViews.push_back(v);
-    return static_cast<int>(model.bufferViews.size()) - 1;
-  };
-  const auto accessor = [&](int buffer_view, int component, size_t count, int type) {
-    tinygltf::Accessor a;
-    a.bufferView = buffer_view;
-    a.componentType = component;
-    a.count = count;
-    a.type = type;
-    model.accessors.push_back(a);
-    return static_cast<int>(model.accessors.size()) - 1;
-  };
-  const int pos = accessor(view(positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                           positions.size() / 3, TINYGLTF_TYPE_VEC3);
-  model.accessors[pos].minValues = {low[0], low[1], low[2]};
-  model.accessors[pos].maxValues = {high[0], high[1], high[2]};
-  const int nrm = accessor(view(normals.data(), normals.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER), TINYGLTF_COMPONENT_TYPE_FLOAT,
-                           normals.size() / 3, TINYGLTF_TYPE_VEC3);
-  tinygltf::Mesh mesh;
-  mesh.name = "yarn";
-  for (size_t k = 0; k < indices.size(); ++k) {
-    if (indices[k].empty()) continue;
-    tinygltf::Primitive primitive;
-    primitive.attributes["POSITION"] = pos;
-    primitive.attributes["NORMAL"] = nrm;
-    primitive.indices = accessor(view(indices[k].data(), indices[k].size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices[k].size(), TINYGLTF_TYPE_SCALAR);
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    if (coloured) {
-      tinygltf::Material material;
-      material.name = material_name(yarn.colours[k]);
-      const auto rgb = linear_colour(yarn.colours[k].srgb);
-      material.pbrMetallicRoughness.baseColorFactor = {rgb[0], rgb[1], rgb[2], 1.0};
-      material.pbrMetallicRoughness.metallicFactor = 0.0;
-      material.pbrMetallicRoughness.roughnessFactor = 0.9;
-      model.materials.push_back(material);
-      primitive.material = static_cast<int>(model.materials.size()) - 1;
-    }
-    mesh.primitives.push_back(primitive);
-  }
-  model.buffers.push_back(std::move(buffer));
-  model.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "skein yarn, radius " + std::to_string(yarn.radius) + " mm";
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  const bool binary = path.extension() == ".glb";
-  write_file_atomically(path, [&](std::ostream& out) {
-    if (!tinygltf::TinyGLTF().WriteGltfSceneToStream(&model, out, !binary, binary)) throw Error(path.string(), "", "tinygltf could not write it");
-  });
+  if (mesh.positions.empty()) throw Error(path.string(), "", "the yarn has no curve of two or more points to make a tube of");
+  write_gltf_mesh(mesh, path);
 }
 
 void write_point_ids(const YarnCurves& yarn, const mesh::StitchMesh& mesh, const std::filesystem::path& path) {

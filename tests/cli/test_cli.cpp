@@ -1151,6 +1151,15 @@ TEST(Cli, SmockClothWritesTheFabricIn3dCertifiedAndRefusesBadSubdivisions) {
   EXPECT_GT(std::filesystem::file_size(dir / "c.png"), 1000u);
   expect_refused("smock " + small.string() + " --subdivisions 3 --cloth " + (dir / "odd.obj").string(), dir / "odd.obj",
                  "subdivisions: must be even, 2 to 32");
+  // As glTF: the same triangles, smooth normals, a two-sided fabric material; other formats refused before any work.
+  ASSERT_EQ(run_skein("smock " + small.string() + " --cloth " + (dir / "c.gltf").string()).status, 0);
+  const auto gltf = nlohmann::json::parse(slurp(dir / "c.gltf"));
+  const auto& primitive = gltf.at("meshes").at(0).at("primitives").at(0);
+  EXPECT_EQ(gltf.at("accessors").at(primitive.at("attributes").at("POSITION").get<int>()).at("count"), 17 * 9);
+  EXPECT_EQ(gltf.at("accessors").at(primitive.at("attributes").at("NORMAL").get<int>()).at("count"), 17 * 9);
+  EXPECT_EQ(gltf.at("accessors").at(primitive.at("indices").get<int>()).at("count"), 16 * 8 * 2 * 3);
+  EXPECT_EQ(gltf.at("materials").at(primitive.at("material").get<int>()).at("doubleSided"), true);
+  expect_refused("smock " + small.string() + " --cloth " + (dir / "c.stl").string(), dir / "c.stl", "--cloth: writes .obj, .glb or .gltf, found '.stl'");
 }
 
 TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
