@@ -117,7 +117,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     // A smocking job (docs/smocking.md): the pattern, how far its threads are pulled, the output folder.
     k.only({"name", "smocking", "output", "pictures"});
     const Keys sm(k.at("smocking"), "smocking", file);
-    sm.only({"pattern", "gamma", "pull", "thickness", "snapshots", "max_iterations"});
+    sm.only({"pattern", "gamma", "pull", "thickness", "snapshots", "max_iterations", "cloth", "cloth_subdivisions"});
     SmockingJob s;
     if (!sm.has("pattern")) sm.fail(sm.name("pattern"), "is missing: the smocking pattern (.smock)");
     s.pattern = sm.file("pattern");
@@ -138,6 +138,12 @@ Job parse_job(const std::string& text, const fs::path& file) {
         if (!f.is_number() || !(f.get<double>() > 0 && f.get<double>() <= 1)) sm.fail(sm.name("snapshots"), "expected fractions in (0, 1], found " + f.dump());
         s.args.options.snapshots.push_back(f.get<double>());
       }
+    }
+    s.cloth = sm.flag("cloth", false);
+    if (sm.has("cloth_subdivisions")) {
+      if (!s.cloth) sm.fail(sm.name("cloth_subdivisions"), "needs \"cloth\": true");
+      s.args.cloth_options.subdivisions = static_cast<int>(sm.integer("cloth_subdivisions", 2, 2, 32));
+      if (s.args.cloth_options.subdivisions % 2) sm.fail(sm.name("cloth_subdivisions"), "must be even (stitch midpoints must be fine vertices)");
     }
     job.smocking = std::move(s);
     job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();
@@ -345,6 +351,10 @@ int run_job(const Job& job, bool resume, bool progress) {
         args.output = run.out("embedding.json");
         args.obj = run.out("threads.obj");
         if (job.pictures) args.png = run.out("smocking.png"), args.chart_png = run.out("shrinkage.png");
+        if (job.smocking->cloth) {
+          args.cloth = run.out("cloth.glb");
+          if (job.pictures) args.cloth_png = run.out("cloth.png");
+        }
         const json report = smock(args);
         run.report()["smocking"] = report;
         status = report["stopped_by"] == "reached" ? 0 : 1;

@@ -29,6 +29,7 @@ struct JobEdit {
 struct SmockingJob {
   std::filesystem::path pattern;
   SmockArgs args;  ///< gamma, pull and options; the output paths are set in the job's folder
+  bool cloth = false;  ///< the 3-D fabric too (cloth.glb, cloth.png)
 };
 
 /// A weaving job (issue 29): a woven design's appearance volume synthesized from exemplars and rendered.

@@ -1180,6 +1180,15 @@ TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
   const auto bad_pull = dir.write("p.json", "{\"smocking\": {\"pattern\": \"" + pattern + "\", \"pull\": [1]}}");
   EXPECT_NE(run_skein("run " + bad_pull.string()).output.find("key 'smocking.pull': expected [X, Y] (the pulling direction) or \"along\", found [1]"),
             std::string::npos);
+  // With "cloth": the 3-D fabric too, as glTF and a picture.
+  const auto small = dir.write("z.smock", "format smocking\ngrid 9 5\nwalk front 0,1 1,-1 1,1 x8\ngamma 0.4\n");
+  const auto cloth_job = dir.write("c.json", "{\"smocking\": {\"pattern\": \"z.smock\", \"cloth\": true}, \"output\": \"cloth\"}");
+  const auto c = run_skein("run " + cloth_job.string());
+  ASSERT_EQ(c.status, 0) << c.output;
+  for (const char* f : {"cloth.glb", "cloth.png"}) EXPECT_TRUE(std::filesystem::exists(dir / "cloth" / f)) << f;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "cloth" / "report.json"))["smocking"]["cloth"]["intersections"], 0);
+  const auto odd = dir.write("o.json", "{\"smocking\": {\"pattern\": \"z.smock\", \"cloth\": true, \"cloth_subdivisions\": 3}}");
+  EXPECT_NE(run_skein("run " + odd.string()).output.find("key 'smocking.cloth_subdivisions': must be even"), std::string::npos);
 }
 
 TEST(Cli, SmockReadsADrawingAndWritesWhatItReadAsText) {
