@@ -133,8 +133,9 @@ json smock(SmockArgs args) {
     write_file_atomically(args.write_smock, [&](std::ostream& out) { out << smocking::smocking_text(pattern); });
     spdlog::info("wrote {}", args.write_smock);
   }
-  spdlog::info("{}: {} smocking, {} x {} grid points {} mm apart, {} threads, {} stitches; gathering to gamma {}", args.input, style_name(pattern.style),
-               pattern.columns, pattern.rows, pattern.spacing, pattern.threads.size(), pattern.num_stitches(), o.gamma);
+  spdlog::info("{}: {} smocking, {} x {} grid points {} mm apart, {} thread{}, {} stitches; gathering to gamma {}", args.input,
+               style_name(pattern.style), pattern.columns, pattern.rows, pattern.spacing, pattern.threads.size(), pattern.threads.size() == 1 ? "" : "s",
+               pattern.num_stitches(), o.gamma);
   const Stopwatch clock;
   const auto e = smocking::embed(pattern, o);
   const double seconds = clock.seconds();
