@@ -18,6 +18,7 @@ fs::path temporary_beside(const fs::path& path) {
 void check_writable(const fs::path& path) {
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw Error(path.string(), "", "cannot write: " + dir.string() + " is a file, not a folder");
   if (!fs::is_directory(dir, ec)) throw Error(path.string(), "", "cannot write: folder " + dir.string() + " does not exist");
   if (fs::is_directory(path, ec)) throw Error(path.string(), "", "cannot write: it is a folder");
   if (::access(dir.c_str(), W_OK) != 0) throw Error(path.string(), "", "cannot write: no permission to write in " + dir.string());

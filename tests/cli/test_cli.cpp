@@ -1160,6 +1160,12 @@ TEST(Cli, SmockClothWritesTheFabricIn3dCertifiedAndRefusesBadSubdivisions) {
   EXPECT_EQ(gltf.at("accessors").at(primitive.at("indices").get<int>()).at("count"), 16 * 8 * 2 * 3);
   EXPECT_EQ(gltf.at("materials").at(primitive.at("material").get<int>()).at("doubleSided"), true);
   expect_refused("smock " + small.string() + " --cloth " + (dir / "c.stl").string(), dir / "c.stl", "--cloth: writes .obj, .glb or .gltf, found '.stl'");
+  // A path through a plain file names the file; a subdivision count out of range names the option and the count.
+  const auto through = run_skein("smock " + small.string() + " --cloth " + (small / "c.glb").string());
+  EXPECT_EQ(through.status, 2);
+  EXPECT_NE(through.output.find(small.string() + " is a file, not a folder"), std::string::npos) << through.output;
+  expect_refused("smock " + small.string() + " --subdivisions 40 --cloth " + (dir / "big.obj").string(), dir / "big.obj",
+                 "--subdivisions: must be even, 2 to 32 (stitch midpoints must be fine vertices), found 40");
 }
 
 TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
