@@ -129,6 +129,9 @@ json smock(SmockArgs args) {
   if (!args.cloth.empty() || !args.cloth_png.empty()) args.cloth_options.validate();
   if (const auto ext = std::filesystem::path(args.cloth).extension(); !args.cloth.empty() && ext != ".obj" && ext != ".glb" && ext != ".gltf")
     throw Error(args.cloth, "--cloth", "writes .obj, .glb or .gltf, found '" + ext.string() + "'");
+  for (const auto& [option, path] : {std::pair{"--png", args.png}, {"--chart-png", args.chart_png}, {"--cloth-png", args.cloth_png}})
+    if (!path.empty() && std::filesystem::path(path).extension() != ".png")
+      throw Error(path, option, "writes a PNG picture: name it .png, found '" + std::filesystem::path(path).extension().string() + "'");
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.write_smock, args.cloth, args.cloth_png})
     if (!path.empty() && path != "-") check_writable(path);
   if (!args.write_smock.empty()) {

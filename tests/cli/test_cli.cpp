@@ -1166,6 +1166,7 @@ TEST(Cli, SmockClothWritesTheFabricIn3dCertifiedAndRefusesBadSubdivisions) {
   EXPECT_NE(through.output.find(small.string() + " is a file, not a folder"), std::string::npos) << through.output;
   expect_refused("smock " + small.string() + " --subdivisions 40 --cloth " + (dir / "big.obj").string(), dir / "big.obj",
                  "--subdivisions: must be even, 2 to 32 (stitch midpoints must be fine vertices), found 40");
+  expect_refused("smock " + small.string() + " --cloth-png " + (dir / "c.jpg").string(), dir / "c.jpg", "--cloth-png: writes a PNG picture: name it .png, found '.jpg'");
 }
 
 TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
