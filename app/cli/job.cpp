@@ -142,8 +142,12 @@ Job parse_job(const std::string& text, const fs::path& file) {
     s.cloth = sm.flag("cloth", false);
     if (sm.has("cloth_subdivisions")) {
       if (!s.cloth) sm.fail(sm.name("cloth_subdivisions"), "needs \"cloth\": true");
-      s.args.cloth_options.subdivisions = static_cast<int>(sm.integer("cloth_subdivisions", 2, 2, 32));
-      if (s.args.cloth_options.subdivisions % 2) sm.fail(sm.name("cloth_subdivisions"), "must be even (stitch midpoints must be fine vertices)");
+      s.args.cloth_options.subdivisions = static_cast<int>(sm.integer("cloth_subdivisions", 2, -1'000'000, 1'000'000));
+      try {
+        s.args.cloth_options.validate();
+      } catch (const Error& e) {
+        sm.fail(sm.name("cloth_subdivisions"), e.rule());
+      }
     }
     job.smocking = std::move(s);
     job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();

@@ -124,9 +124,11 @@ json smock(SmockArgs args) {
     o.pull = {px, py};
     if (!o.pull.allFinite() || o.pull.norm() == 0) throw Error("", "--pull", "a pulling direction of non-zero length, found \"" + args.pull + "\"");
   }
-  if (const int n = args.cloth_options.subdivisions; n < 2 || n > 32 || n % 2)
-    throw Error("", "--subdivisions", "must be even, 2 to 32 (stitch midpoints must be fine vertices), found " + std::to_string(n));
-  if (!args.cloth.empty() || !args.cloth_png.empty()) args.cloth_options.validate();
+  try {
+    args.cloth_options.validate();
+  } catch (const Error& e) {  // only --subdivisions of the cloth's options is set from the command line
+    throw Error("", "--" + e.place(), e.rule());
+  }
   if (const auto ext = std::filesystem::path(args.cloth).extension(); !args.cloth.empty() && ext != ".obj" && ext != ".glb" && ext != ".gltf")
     throw Error(args.cloth, "--cloth", "writes .obj, .glb or .gltf, found '" + ext.string() + "'");
   for (const auto& [option, path] : {std::pair{"--png", args.png}, {"--chart-png", args.chart_png}, {"--cloth-png", args.cloth_png}})

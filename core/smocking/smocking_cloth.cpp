@@ -137,22 +137,20 @@ Pair closest_pair(const Fabric& f, const Eigen::Matrix3Xd& x, bool point_triangl
   return {{a0, a1, b0, b1}, {1 - s, s, -(1 - t), -t}, true};
 }
 
-/// Pairs of elements (point-triangle, edge-edge) that share no vertex and lie within `radius` at x.
-std::vector<Pair> near_pairs(const Fabric& f, const Eigen::Matrix3Xd& x, double radius) {
-  std::vector<Pair> pairs;
-  candidate_pairs(f, x, nullptr, radius, [&](bool point_triangle, int a, int b) {
-    Pair p = closest_pair(f, x, point_triangle, a, b);
-    Vec3 r = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) r += p.w[k] * x.col(p.v[k]);
-    if (r.norm() < radius) pairs.push_back(p);
-  });
-  return pairs;
-}
-
 Vec3 difference(const Pair& p, const Eigen::Matrix3Xd& x) {
   Vec3 r = Vec3::Zero();
   for (int k = 0; k < 4; ++k) r += p.w[k] * x.col(p.v[k]);
   return r;
+}
+
+/// Pairs of elements (point-triangle, edge-edge) that share no vertex and lie within `radius` at x.
+std::vector<Pair> near_pairs(const Fabric& f, const Eigen::Matrix3Xd& x, double radius) {
+  std::vector<Pair> pairs;
+  candidate_pairs(f, x, nullptr, radius, [&](bool point_triangle, int a, int b) {
+    const Pair p = closest_pair(f, x, point_triangle, a, b);
+    if (difference(p, x).norm() < radius) pairs.push_back(p);
+  });
+  return pairs;
 }
 
 /// IPC's log barrier b(d) = -κ (d - d̂)² ln(d / d̂) below d̂, and its first two derivatives.
@@ -354,7 +352,7 @@ Fabric build_fabric(const SmockingPattern& pattern, const Embedding& embedding, 
 }  // namespace
 
 void ClothOptions::validate() const {
-  if (subdivisions < 2 || subdivisions > 32 || subdivisions % 2) throw Error("", "subdivisions", "must be even, 2 to 32 (stitch midpoints must be fine vertices)");
+  if (subdivisions < 2 || subdivisions > 32 || subdivisions % 2) throw Error("", "subdivisions", "must be even, 2 to 32 (stitch midpoints must be fine vertices), found " + std::to_string(subdivisions));
   for (const auto& [name, value] : {std::pair{"k_stretch", k_stretch}, {"k_bend", k_bend}, {"w_pos", w_pos}, {"w_sew", w_sew}, {"inertia", inertia}, {"k_barrier", k_barrier}})
     if (!(value > 0) || !std::isfinite(value)) throw Error("", name, "must be a positive number");
   if (frames < 1 || newton_per_frame < 1) throw Error("", "frames", "frames and Newton steps per frame must be at least 1");
@@ -473,6 +471,7 @@ double additive_ccd(const std::array<Eigen::Vector3d, 4>& x, const std::array<Ei
   const double d0 = distance(), gap = keep * d0;
   double t = 0, advance = (1 - keep) * d0 / lp;
   for (int it = 0; it < 1000; ++it) {
+    advance = std::min(advance, 1 - t);  // the end of the step is measured too
     for (int k = 0; k < 4; ++k) y[k] += advance * p[k];
     const double d = distance();
     if (t > 0 && d < gap) return t;

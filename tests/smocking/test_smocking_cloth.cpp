@@ -104,7 +104,7 @@ TEST(SmockingCloth, TheEnergiesGradientMatchesFiniteDifferences) {
 TEST(SmockingCloth, RefusesBadOptions) {
   ClothOptions o;
   o.subdivisions = 3;
-  EXPECT_EQ(error_of([&] { o.validate(); }), "subdivisions: must be even, 2 to 32 (stitch midpoints must be fine vertices)");
+  EXPECT_EQ(error_of([&] { o.validate(); }), "subdivisions: must be even, 2 to 32 (stitch midpoints must be fine vertices), found 3");
   o = {};
   o.k_bend = -1;
   EXPECT_EQ(error_of([&] { o.validate(); }), "k_bend: must be a positive number");
