@@ -286,7 +286,9 @@ private:
       } else if (m_text[m_pos] == '[' || m_text[m_pos] == '(') {
         ++m_pos;
         Item g = make(Item::Group, "[", static_cast<int>(at) + m_offset + 1);
+        if (++m_depth > kMaxGroupDepth) fail(at, "groups are nested more than " + std::to_string(kMaxGroupDepth) + " deep");
         g.items = sequence(true);
+        --m_depth;
         skip_separators();
         std::smatch times;
         if (match(R"((?:all\s+)?in(?:to)?\s+(?:the\s+)?(?:next|same)\s+(?:st|stitch)\b)", times)) {
@@ -398,6 +400,8 @@ private:
   const std::vector<PatternColour>& m_palette;
   int& m_colour;
   size_t m_pos = 0;
+  int m_depth = 0;                         ///< groups open at m_pos
+  static constexpr int kMaxGroupDepth = 16;  ///< "[(k1, p1) twice, k2] 3 times" is two; no pattern needs sixteen
 };
 
 /// Groups expanded, in the order written.

@@ -534,3 +534,17 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
             "s.txt: line 1, column 12: 'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern; beside other stitches, or "
             "'to last N sts', only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
 }
+
+TEST(WrittenPattern, GroupsNestedPastSixteenDeepAreRefusedNotRecursedInto) {
+  // A fuzzer's input: thousands of '(' overflowed the stack of the recursive group reader.
+  const auto nested = [](int depth) {
+    return "Row 1: *" + std::string(static_cast<size_t>(depth), '[') + "k1" + [&] {
+      std::string closes;
+      for (int i = 0; i < depth; ++i) closes += "] once";
+      return closes;
+    }() + "; rep from *.\n";
+  };
+  EXPECT_NO_THROW(mesh::parse_pattern(nested(16), "deep.txt"));
+  EXPECT_EQ(error_of([&] { mesh::parse_pattern(nested(17), "deep.txt"); }), "deep.txt: line 1, column 25: groups are nested more than 16 deep");
+  EXPECT_EQ(error_of([&] { mesh::parse_pattern("Row 1: *k2," + std::string(4000, '(') + "\n", "p.txt"); }), "p.txt: line 1, column 28: groups are nested more than 16 deep");
+}
