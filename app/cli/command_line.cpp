@@ -761,6 +761,7 @@ int run_command_line(int argc, char** argv) {
     if (*yarn_cmd) {
       for (const auto& p : {yarn_out, yarn_tubes, yarn_png, yarn_ids})
         if (!p.empty()) check_writable(p);
+      check_yarn_output(yarn_out);
       if (yarn_units != "mm" && is_bcc(yarn_out)) throw Error("", "--units " + yarn_units, "applies to OBJ outputs; a .bcc is in millimetres");
       Stopwatch t;
       mesh::EmitReport report;
@@ -794,6 +795,7 @@ int run_command_line(int argc, char** argv) {
     if (*ry) {
       for (const auto& p : {ry_out, ry_report, ry_log, ry_png, ry_checkpoint})
         if (!p.empty()) check_writable(p);
+      if (!ry_out.empty()) check_yarn_output(ry_out);
       bool ry_take_up_given = ry->count("--take-up") > 0;
       if (is_project(ry_in) && std::filesystem::exists(ry_in)) {
         // The yarn settings the app saved with the project stand where the command line gives none.
@@ -1069,7 +1071,8 @@ int run_command_line(int argc, char** argv) {
       const double sim_radius = (pat_relax ? pat_gamma : 1.0) * (compressed ? mesh::kYarnCompression : 1.0) * radius;
       const bool preview = !pat_preview.empty() || !pat_preview_png.empty();
       if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
-      if (!pat_preview.empty()) check_writable(pat_preview);
+      check_yarn_output(pat_out);  // before any work: a relaxation is not lost to a name the writer refuses
+      if (!pat_preview.empty()) check_yarn_output(pat_preview);
       std::optional<relax::PeriodicPatch> patch_kept;  // for the preview
       std::optional<mesh::StitchMesh> ids_mesh;        // for --ids: the tiling's stitch mesh
       if (!pat_ids.empty()) {

@@ -162,11 +162,16 @@ json yarn_json(const mesh::YarnCurves& yarn) {
           {"radius", s.radius}};
 }
 
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview, const std::string& unit) {
+void check_yarn_output(const std::string& path) {
   const auto ext = fs::path(path).extension();
-  if (ext == ".bcc") relax::write_bcc(yarn, path, preview);
-  else if (ext == ".obj") relax::write_obj_polylines(yarn, path, preview, unit);
-  else throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
+  if (ext != ".bcc" && ext != ".obj") throw Error(path, "", "yarn is written as .bcc or .obj (polylines)");
+  check_writable(path);
+}
+
+void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview, const std::string& unit) {
+  check_yarn_output(path);
+  if (fs::path(path).extension() == ".bcc") relax::write_bcc(yarn, path, preview);
+  else relax::write_obj_polylines(yarn, path, preview, unit);
 }
 
 render::YarnColor own_colours(const mesh::YarnCurves& yarn) {

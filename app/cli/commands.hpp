@@ -102,6 +102,9 @@ mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string&
 /// Writes yarn as .bcc or .obj polylines, by the extension; `preview` marks it as placed for a preview, not
 /// relaxed (relax::write_bcc).
 void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
+/// Refuses, before any work, a yarn output write_yarn would refuse at the end: a name that is not .bcc or .obj,
+/// or a folder that cannot be written.
+void check_yarn_output(const std::string& path);
 /// How a yarn picture is coloured unless asked otherwise: in the yarn's own colours when it has them
 /// (patterns/FORMAT.md, "Colour"), else by stitch type.
 render::YarnColor own_colours(const mesh::YarnCurves& yarn);

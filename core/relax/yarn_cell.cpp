@@ -1,7 +1,10 @@
 #include "relax/yarn_cell.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numeric>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,43 @@ Eigen::Matrix2d CellStress::mean_stress(const Eigen::Vector3d& period_x, const E
   return virial.topLeftCorner<2, 2>() / area;
 }
 
+std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map) {
+  const int n = system.num_points();
+  std::vector<int> root(n);
+  std::vector<Eigen::Vector2i> cell(n, Eigen::Vector2i::Zero());
+  std::iota(root.begin(), root.end(), 0);
+  for (size_t i = 0; i < map.virtual_points.size(); ++i) root[map.virtual_points[i]] = map.real_points[i], cell[map.virtual_points[i]] = map.cells[i];
+  for (int p : map.frozen) root[p] = -1;
+  std::vector<char> real(n, 1);
+  for (int p : map.virtual_points) real[p] = 0;
+  for (int p : map.frozen) real[p] = 0;
+  // A segment as the real points of its four and their repeats from the first's, the same either way along the yarn.
+  using Key = std::array<int, 10>;
+  const auto key_of = [&](const std::array<int, 4>& sp) {
+    Key forward, backward;
+    for (int k = 0; k < 4; ++k) {
+      forward[k] = root[sp[k]], backward[k] = root[sp[3 - k]];
+      if (k == 0) continue;
+      const Eigen::Vector2i f = cell[sp[k]] - cell[sp[0]], b = cell[sp[3 - k]] - cell[sp[3]];
+      forward[2 + 2 * k] = f.x(), forward[3 + 2 * k] = f.y(), backward[2 + 2 * k] = b.x(), backward[3 + 2 * k] = b.y();
+    }
+    return std::min(forward, backward);
+  };
+  std::set<Key> seen;
+  std::vector<char> out(system.num_segments(), 0);
+  for (int s = 0; s < system.num_segments(); ++s) {
+    std::array<int, 4> sp;
+    for (int k = 0; k < 4; ++k) sp[k] = system.segment_points[s][k];
+    if (!real[sp[1]] && !real[sp[2]]) continue;
+    if (std::any_of(sp.begin(), sp.end(), [&](int p) { return root[p] < 0; })) {
+      out[s] = real[sp[1]];  // next to a frozen end: no copy of it can be told
+      continue;
+    }
+    out[s] = seen.insert(key_of(sp)).second;
+  }
+  return out;
+}
+
 CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,
                        const Eigen::Matrix3Xd& points) {
   if (map.cells.size() != map.virtual_points.size()) throw Error("", "period", "the periodic map does not say each virtual point's repeat");
@@ -46,6 +86,7 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
     real[map.virtual_points[i]] = 0;
   }
   for (int p : map.frozen) real[p] = 0;
+  const auto counted = repeat_segments(system, map);
   const auto view = segment_view(system);
   const model::IntrinsicParams<double> intrinsic{params.k_bend, params.k_stretch, params.k_length};
   const model::ContactParams<double> contact{params.k_contact, 0.0, 0.0, system.radius, params.contact_soft};
@@ -69,8 +110,8 @@ CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const
   CellStress out;
   std::vector<CellSample> mine, theirs;
   for (int s = 0; s < system.num_segments(); ++s) {
+    if (!counted[s]) continue;
     const auto& sp = system.segment_points[s];
-    if (!real[sp[1]]) continue;
     // Intrinsic terms (Leaf eqs. 1, 7, 8): dE/dP = Σ_k ∂E/∂p_k c_kᵀ.
     const Eigen::Vector3d origin = points.col(sp[1]);
     V p[4], grad[4] = {};
@@ -165,5 +206,102 @@ void PeriodRelaxer::reject() {
 bool PeriodRelaxer::converged(double limit) const {
   return m_stress.cwiseAbs().maxCoeff() <= limit;  // the held components' stresses are zero
 }
+
+CellFrame::CellFrame(const PeriodOptions& options, const Eigen::Matrix<double, 3, 2>& period, const PeriodicMap& map, const Eigen::Matrix3Xd& points)
+    : m_free(options.free_x, options.free_y, options.shear), m_period0(period), m_period(period), m_map(map), m_frozen(points.cols(), 0) {
+  options.validate();
+  if (std::abs(period(1, 0)) > 1e-9 * period.col(0).norm() || std::abs(period(2, 0)) > 1e-9 * period.col(0).norm() ||
+      std::abs(period(2, 1)) > 1e-9 * period.col(1).norm())
+    throw Error("", "period", "a free period needs period_x along x and period_y in the xy plane");
+  std::vector<char> real(points.cols(), 1);
+  for (int p : map.virtual_points) real[p] = 0;
+  for (int p : map.frozen) real[p] = 0, m_frozen[p] = 1;
+  m_centre.setZero();
+  int count = 0;
+  for (long p = 0; p < points.cols(); ++p)
+    if (real[p]) m_centre += points.col(p).head<2>(), ++count;
+  if (count > 0) m_centre /= count;
+  m_length = std::max(period(0, 0), period(1, 1));
+}
+
+Eigen::Matrix2d CellFrame::deformation() const {
+  Eigen::Matrix2d p, p0;
+  p << m_period(0, 0), m_period(0, 1), 0, m_period(1, 1);
+  p0 << m_period0(0, 0), m_period0(0, 1), 0, m_period0(1, 1);
+  return p * p0.inverse();
+}
+
+Eigen::Matrix3Xd CellFrame::gradient(const Eigen::Matrix3Xd& grad, const CellStress& stress, const Eigen::Matrix3Xd& points) const {
+  const Eigen::Matrix2d f = deformation(), inverse = f.inverse();
+  const long n = grad.cols();
+  Eigen::Matrix3Xd out(3, n + 1);
+  Eigen::Matrix2d dfdf = Eigen::Matrix2d::Zero();  // dE/dF: Σ g (X − c)ᵀ over the points ...
+  for (long p = 0; p < n; ++p) {
+    const Eigen::Vector2d g = grad.col(p).head<2>();
+    out.col(p) << f.transpose() * g, grad(2, p);
+    if (g.squaredNorm() > 0) dfdf += g * (inverse * (points.col(p).head<2>() - m_centre)).transpose();
+  }
+  // ... and ∂E/∂P P0ᵀ, the period's own share (the virtual copies' offsets P cell).
+  Eigen::Matrix2d period_gradient, p0;
+  period_gradient << stress.gradient(0, 0), stress.gradient(0, 1), stress.gradient(1, 0), stress.gradient(1, 1);
+  p0 << m_period0(0, 0), m_period0(0, 1), 0, m_period0(1, 1);
+  dfdf += period_gradient * p0.transpose();
+  out.col(n) = Eigen::Vector3d(dfdf(0, 0), dfdf(1, 1), dfdf(0, 1)).cwiseProduct(m_free) / m_length;
+  return out;
+}
+
+Eigen::Matrix<double, 3, 2> CellFrame::split(const Eigen::Matrix3Xd& move, Eigen::Matrix3Xd& points_move) const {
+  const Eigen::Matrix2d f = deformation();
+  const long n = move.cols() - 1;
+  points_move.resize(3, n);
+  for (long p = 0; p < n; ++p) points_move.col(p) << f * move.col(p).head<2>(), move(2, p);
+  const Eigen::Vector3d dframe = move.col(n).cwiseProduct(m_free) / m_length;
+  Eigen::Matrix2d next_f = f, p0;
+  next_f(0, 0) += dframe.x();
+  next_f(1, 1) += dframe.y();
+  next_f(0, 1) += dframe.z();
+  p0 << m_period0(0, 0), m_period0(0, 1), 0, m_period0(1, 1);
+  const Eigen::Matrix2d next = next_f * p0;
+  Eigen::Matrix<double, 3, 2> period = Eigen::Matrix<double, 3, 2>::Zero();
+  period.topRows<2>() = next;
+  return period;
+}
+
+Eigen::Matrix3Xd CellFrame::affine_move(const Eigen::Matrix<double, 3, 2>& next, const Eigen::Matrix3Xd& points) const {
+  Eigen::Matrix2d p, q;
+  p << m_period(0, 0), m_period(0, 1), 0, m_period(1, 1);
+  q << next(0, 0), next(0, 1), 0, next(1, 1);
+  const Eigen::Matrix2d strain = q * p.inverse() - Eigen::Matrix2d::Identity();
+  Eigen::Matrix3Xd out = Eigen::Matrix3Xd::Zero(3, points.cols());
+  for (long i = 0; i < points.cols(); ++i)
+    if (!m_frozen[i]) out.col(i).head<2>() = strain * (points.col(i).head<2>() - m_centre);
+  return out;
+}
+
+double CellFrame::largest_move(const Eigen::Matrix3Xd& move, const Eigen::Matrix3Xd& points) const {
+  Eigen::Matrix3Xd points_move;
+  const auto next = split(move, points_move);
+  for (size_t i = 0; i < m_map.virtual_points.size(); ++i) points_move.col(m_map.virtual_points[i]) = points_move.col(m_map.real_points[i]);
+  const Eigen::Matrix3Xd affine = affine_move(next, points + points_move);
+  double largest = 0;
+  for (long p = 0; p < points.cols(); ++p)
+    if (!m_frozen[p]) largest = std::max(largest, (points_move.col(p) + affine.col(p)).norm());
+  return largest;
+}
+
+Eigen::Matrix3Xd CellFrame::taken(const Eigen::Matrix3Xd& points_move, const Eigen::Matrix<double, 3, 2>& next) const {
+  const Eigen::Matrix2d inverse = deformation().inverse();
+  const long n = points_move.cols();
+  Eigen::Matrix3Xd out(3, n + 1);
+  for (long p = 0; p < n; ++p) out.col(p) << inverse * points_move.col(p).head<2>(), points_move(2, p);
+  Eigen::Matrix2d p0, q;
+  p0 << m_period0(0, 0), m_period0(0, 1), 0, m_period0(1, 1);
+  q << next(0, 0), next(0, 1), 0, next(1, 1);
+  const Eigen::Matrix2d change = q * p0.inverse() - deformation();
+  out.col(n) = Eigen::Vector3d(change(0, 0), change(1, 1), change(0, 1)).cwiseProduct(m_free) * m_length;
+  return out;
+}
+
+void CellFrame::accept(const Eigen::Matrix<double, 3, 2>& next) { m_period = next; }
 
 }  // namespace skein::relax

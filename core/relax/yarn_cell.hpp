@@ -34,6 +34,13 @@ struct CellStress {
   Eigen::Matrix2d mean_stress(const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y) const;
 };
 
+/// Which segments of a periodic patch make up one repeat: one of each piece of yarn (its span and the two points
+/// either side, by their real points and repeats), of those that reach a real point. A yarn can cross the
+/// repeat's edge in both directions (a loop's head in the row above, its legs in this one), so a piece that has
+/// a real point at both of its ends' copies can be there twice: counting segments by their first real point
+/// alone counted such pieces twice, in the energy and the stress.
+std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map);
+
 /// The stress at `points` with contact between the given pairs; the map must say each virtual point's cell.
 CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,
                        const Eigen::Matrix3Xd& points);
@@ -85,6 +92,45 @@ private:
   Eigen::Vector3d m_step, m_last = Eigen::Vector3d::Zero(), m_stress = Eigen::Vector3d::Constant(INFINITY);
   double m_energy = 0;
   CellStress::Terms m_terms;
+};
+
+/// The repeat's deformation as variables of the control points' L-BFGS (variable-cell relaxation as atomistic
+/// relaxers do it: Tadmor et al. 1999's fractional coordinates, ASE's cell filters). The period is P = F P0 for
+/// an in-plane deformation F (upper triangular: period_x stays on the x axis), and every real point is
+/// x = c + F (X − c) for reference coordinates X about the real points' centre c. A move of F deforms the whole
+/// patch at once, real points with their copies, where the staggered Rprop step (PeriodRelaxer) moves only the
+/// virtual copies and leaves the real points to follow a strain that starts at the repeat's edge: the width of
+/// a rib is a soft mode of a whole repeat (docs/yarn-relaxation.md, "The free period"), which the staggered
+/// step took 80,000 steps to drift along. The variables are the points' X (columns 0 to n − 1 of the L-BFGS
+/// vector, virtual and frozen ones zero) and one more column: L × (F00, F11, F01), L the longer period, so
+/// that a unit step moves the repeat's far side about a millimetre, as a point's does.
+class CellFrame {
+public:
+  CellFrame(const PeriodOptions& options, const Eigen::Matrix<double, 3, 2>& period, const PeriodicMap& map, const Eigen::Matrix3Xd& points);
+  /// dE/d(variables) from the points' gradient (virtual and frozen columns zero) and the repeat's stress at
+  /// the same state: Fᵀ g for each point (in the plane) and, for the frame, (Σ g (X − c)ᵀ + ∂E/∂P P0ᵀ) / L
+  /// in its free components.
+  Eigen::Matrix3Xd gradient(const Eigen::Matrix3Xd& grad, const CellStress& stress, const Eigen::Matrix3Xd& points) const;
+  /// A move of the variables as the two moves the relaxer takes one after the other: the points' own
+  /// (F ΔX, into `points_move`) and the frame's (the next period; the points then follow it by affine_move).
+  Eigen::Matrix<double, 3, 2> split(const Eigen::Matrix3Xd& move, Eigen::Matrix3Xd& points_move) const;
+  /// The move of every point that is not frozen (copies included) by the deformation from the current period to `next`.
+  Eigen::Matrix3Xd affine_move(const Eigen::Matrix<double, 3, 2>& next, const Eigen::Matrix3Xd& points) const;
+  /// The largest distance a point travels under a move of the variables [mm] (both parts, copies included).
+  double largest_move(const Eigen::Matrix3Xd& move, const Eigen::Matrix3Xd& points) const;
+  /// The variables' move that a taken points' move and period correspond to (the L-BFGS secant pair's s).
+  Eigen::Matrix3Xd taken(const Eigen::Matrix3Xd& points_move, const Eigen::Matrix<double, 3, 2>& next) const;
+  void accept(const Eigen::Matrix<double, 3, 2>& next);  ///< the period the patch now has
+  const Eigen::Matrix<double, 3, 2>& period() const { return m_period; }
+
+private:
+  Eigen::Matrix2d deformation() const;  ///< F, in the plane
+  Eigen::Vector3d m_free;               ///< per frame variable (F00, F11, F01): 1 when free
+  Eigen::Matrix<double, 3, 2> m_period0, m_period;
+  const PeriodicMap& m_map;
+  std::vector<char> m_frozen;
+  Eigen::Vector2d m_centre;
+  double m_length = 1;
 };
 
 }  // namespace skein::relax

@@ -34,16 +34,38 @@ void map_points(PeriodicPatch& patch, const std::vector<std::pair<int, int>>& re
     patch.ring[p] = std::max(std::abs(a - centre), std::abs(b - centre));
     if (patch.ring[p] == 0) real.emplace(position_key(patch.yarn.points[p]), p);
   }
+  // A point on the centre repeat's edge can belong to it twice: a yarn that leaves through its top edge comes in
+  // through the bottom one a period lower, and both points are the centre's faces'. The later of the two is a
+  // copy of the earlier, as the rings' points are; else the repeat would hold the yarn there twice, in its energy
+  // and its stress, and as two points free to part.
+  std::vector<std::pair<int, Eigen::Vector2i>> copy_of(n, {-1, Eigen::Vector2i::Zero()});
+  const auto add_virtual = [&](int p, int r, Eigen::Vector2i cell) {
+    if (copy_of[r].first >= 0) cell += copy_of[r].second, r = copy_of[r].first;
+    patch.map.virtual_points.push_back(p);
+    patch.map.real_points.push_back(r);
+    patch.map.offsets.push_back(cell.x() * patch.period_x + cell.y() * patch.period_y);
+    patch.map.cells.push_back(cell);
+  };
   for (int p = 0; p < n; ++p) {
-    if (patch.ring[p] == 0) continue;
+    if (patch.ring[p] != 0) continue;
+    for (int a = -1; a <= 1 && copy_of[p].first < 0; ++a)
+      for (int b = -1; b <= 1 && copy_of[p].first < 0; ++b) {
+        if (a == 0 && b == 0) continue;
+        const auto it = real.find(position_key(patch.yarn.points[p] - a * patch.period_x - b * patch.period_y));
+        if (it != real.end() && it->second < p && copy_of[it->second].first < 0) copy_of[p] = {it->second, Eigen::Vector2i(a, b)};
+      }
+    if (copy_of[p].first >= 0) {
+      patch.ring[p] = 1;
+      add_virtual(p, copy_of[p].first, copy_of[p].second);
+    }
+  }
+  for (int p = 0; p < n; ++p) {
+    if (patch.ring[p] == 0 || copy_of[p].first >= 0) continue;
     if (patch.ring[p] <= rings) {
       const auto [a, b] = repeat[p];
       const Eigen::Vector3d offset = (a - centre) * patch.period_x + (b - centre) * patch.period_y;
       if (const auto it = real.find(position_key(patch.yarn.points[p] - offset)); it != real.end()) {
-        patch.map.virtual_points.push_back(p);
-        patch.map.real_points.push_back(it->second);
-        patch.map.offsets.push_back(offset);
-        patch.map.cells.emplace_back(a - centre, b - centre);
+        add_virtual(p, it->second, Eigen::Vector2i(a - centre, b - centre));
         continue;
       }
     }

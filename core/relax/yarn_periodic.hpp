@@ -33,7 +33,7 @@ void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matr
 struct PeriodicPatch {
   mesh::YarnCurves yarn;
   PeriodicMap map;
-  std::vector<int> ring;               ///< per point: its repeat's distance from the centre (0: real)
+  std::vector<int> ring;               ///< per point: its repeat's distance from the centre (0: real; 1 for a centre point that copies another across its edge)
   Eigen::Vector3d period_x, period_y;  ///< the repeat's offsets [mm]
   int tiles = 0;                       ///< repeats along each side, the dropped ring included
 };

@@ -341,16 +341,24 @@ public:
 
     YarnRelaxReport report;
     const double force_scale = bending_force_scale(m_options.params, r);
+    // A free period: L-BFGS takes it as three more variables (CellFrame), FIRE and Euler step it apart (Rprop).
     std::optional<PeriodRelaxer> cell;
+    std::optional<CellFrame> frame;
+    CellStress frame_stress;
+    Eigen::Vector3d frame_stresses = Eigen::Vector3d::Constant(INFINITY);
+    const Eigen::Vector3d free_components(m_options.period.free_x, m_options.period.free_y, m_options.period.shear);
     if (m_options.period.free) {
       if (state.period.isZero()) state.period << m_periodic.period_x, m_periodic.period_y;
       set_period(m_periodic, state.points, state.period.col(0), state.period.col(1));
-      cell.emplace(m_options.period, state.period.col(0), state.period.col(1));
+      if (m_options.method == YarnMethod::Lbfgs)
+        frame.emplace(m_options.period, state.period, m_periodic, state.points);
+      else
+        cell.emplace(m_options.period, state.period.col(0), state.period.col(1));
       report.free_period = true;
     }
     std::deque<double> energies;  // the force rule's window: the last stall_window + 1 energies
     Eigen::Matrix<double, 3, 2> good_period = state.period;
-    Eigen::Matrix3Xd grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
+    Eigen::Matrix3Xd grad, frame_grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
     double energy = 0, residual = 0, force = 0;
     long failures = 0;
     for (;;) {
@@ -361,9 +369,10 @@ public:
         // Blow-up: back to the last good state with half the step (Leaf §3.1's step restriction failed).
         state.points = good_points;
         state.velocities = good_velocities;
-        if (cell) {
+        if (cell || frame) {
           state.period = good_period;
           set_period(m_periodic, state.points, state.period.col(0), state.period.col(1));
+          if (frame) frame->accept(state.period);
         }
         state.time_step *= 0.5;
         ++state.rollbacks;
@@ -379,6 +388,11 @@ public:
         continue;
       }
       failures = 0;
+      if (frame) {
+        frame_stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
+        frame_stresses = period_stresses(frame_stress, state.period).cwiseProduct(free_components);
+        frame_grad = frame->gradient(grad, frame_stress, state.points);
+      }
       // L-BFGS after a rollback: shorter moves, lengthening again step by step. No line search and no test of the
       // energy (as atomistic relaxers do): a periodic patch's energy is not the one its real points' forces
       // descend (its virtual points' own terms count in it), and testing it stalls the run (docs/yarn-relaxation.md).
@@ -411,7 +425,10 @@ public:
         const bool full = static_cast<long>(energies.size()) == m_options.stall_window + 1;
         return full && force <= m_options.force_tolerance && energies.front() - energy <= m_options.energy_stall * std::abs(energy);
       };
-      const auto cell_converged = [&] { return !cell || cell->converged(m_options.period.tolerance * force_scale); };
+      const auto cell_converged = [&] {
+        if (frame) return frame_stresses.cwiseAbs().maxCoeff() <= m_options.period.tolerance * force_scale;
+        return !cell || cell->converged(m_options.period.tolerance * force_scale);
+      };
       bool converged = stopped() && cell_converged();
       if (converged && m_active) {
         // The honest final check: the whole system's forces from scratch, none of them kept.
@@ -454,7 +471,12 @@ public:
       const GuardCounters before = m_guard->counters();
       const long awake = m_active ? m_active->choose(grad, m_options.tolerance * state.residual0 / std::sqrt(static_cast<double>(grad.cols())))
                                   : grad.cols();
-      const double dt = propose(state, grad, damping, limit, delta);
+      const double dt = propose(state, frame ? frame_grad : grad, damping, limit, delta, frame ? &*frame : nullptr);
+      Eigen::Matrix<double, 3, 2> next_period = state.period;
+      if (frame) {
+        const Eigen::Matrix3Xd variables_move = delta;
+        next_period = frame->split(variables_move, delta);
+      }
       if (!m_targets.boundary_loops.empty()) project_boundary(m_targets, delta);
       if (!m_periodic.empty()) apply_periodic(m_periodic, delta, state.velocities);
       const double scale = m_guard->accept(state.points, delta);
@@ -462,10 +484,13 @@ public:
       state.pull_through_events += crossings;
       state.points += delta;
       if (m_options.method == YarnMethod::Lbfgs) {
-        // The move taken, after the guard: the secant pair's s (real points only). A free period moves by its
-        // own Rprop steps, outside the memory.
+        // The move taken, after the guard: the secant pair's s (real points only, and a free period's frame).
         m_lbfgs_move = delta;
         if (!m_periodic.empty()) constrain_gradient(m_periodic, m_lbfgs_move);
+        if (frame) {
+          if (next_period != state.period) state.pull_through_events += frame_step(*frame, state, next_period, delta);
+          m_lbfgs_move = frame->taken(m_lbfgs_move, next_period);
+        }
         m_lbfgs_moved = true;
       } else if (scale < 1) {
         state.velocities = delta / dt;  // the velocity that matches the move the guard let through
@@ -493,7 +518,7 @@ public:
         log.crossings = crossings;
         log.awake = awake;
         log.force = force;
-        if (cell) log.period_x = state.period(0, 0), log.period_y = state.period(1, 1);
+        if (cell || frame) log.period_x = state.period(0, 0), log.period_y = state.period(1, 1);
         on_step(log);
       }
       const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;
@@ -521,6 +546,11 @@ public:
       report.period_stress = cell->stress() / force_scale;
       report.repeat_energy = cell->energy();
       report.repeat_terms = cell->terms();
+    } else if (frame) {
+      report.period = state.period;
+      report.period_stress = frame_stresses / force_scale;
+      report.repeat_energy = frame_stress.energy;
+      report.repeat_terms = frame_stress.terms;
     } else if (!m_periodic.virtual_points.empty() && m_periodic.cells.size() == m_periodic.virtual_points.size()) {
       // A fixed period's stress says how far it is from the repeat's stress-free one (and its sign, which way).
       report.period << m_periodic.period_x, m_periodic.period_y;
@@ -578,6 +608,31 @@ private:
     return crossings;
   }
 
+  /// L-BFGS's frame move (after the points' one): every point carried by the deformation to `next`, passed through
+  /// the guard on its own and taken only whole, as period_step's; `next` becomes the period kept. The move is
+  /// added to `delta`; returns the auditor's crossings in it.
+  long frame_step(CellFrame& frame, YarnState& state, Eigen::Matrix<double, 3, 2>& next, Eigen::Matrix3Xd& delta) {
+    const Eigen::Matrix3Xd move = frame.affine_move(next, state.points);
+    Eigen::Matrix3Xd guarded = move;
+    GuardCounters counters = m_guard->counters();
+    m_guard->accept(state.points, guarded);
+    const long held = m_guard->counters().held_points - counters.held_points;
+    counters = m_guard->counters();
+    --counters.steps;  // one step, two passes
+    m_guard->set_counters(counters);
+    if (held > 0 || !(guarded - move).isZero()) {
+      next = state.period;
+      return 0;
+    }
+    const long crossings = m_options.audit ? static_cast<long>(m_auditor.crossings(state.points, state.points + move).size()) : 0;
+    state.points += move;
+    set_period(m_periodic, state.points, next.col(0), next.col(1));
+    state.period = next;
+    frame.accept(next);
+    delta += move;
+    return crossings;
+  }
+
   /// Which points the next evaluation must see as changed: those that moved, and for Euler's damping those
   /// whose velocity changed.
   void mark_changed(const YarnState& state, const Eigen::Matrix3Xd& delta) {
@@ -598,7 +653,9 @@ private:
   }
 
   /// The integrator's proposed move into `delta`; returns the time step it used.
-  double propose(YarnState& state, const Eigen::Matrix3Xd& grad, const Eigen::Matrix3Xd& damping, double limit, Eigen::Matrix3Xd& delta) {
+  /// With a free period's frame, L-BFGS moves its variables (`grad` and `delta` have the frame's column).
+  double propose(YarnState& state, const Eigen::Matrix3Xd& grad, const Eigen::Matrix3Xd& damping, double limit, Eigen::Matrix3Xd& delta,
+                 const CellFrame* frame) {
     const int n = m_system.num_points();
     const auto asleep = [&](int p) { return m_active && m_active->asleep(p); };
     Eigen::Matrix3Xd accel(3, n);
@@ -633,7 +690,10 @@ private:
       delta = m_lbfgs.direction(grad);
       // The whole move scaled (its direction kept) so that no point goes further than the trusted share of ε r / 1.25.
       double largest = 0;
-      for (int p = 0; p < n; ++p) largest = std::max(largest, delta.col(p).norm());
+      if (frame)
+        largest = frame->largest_move(delta, state.points);
+      else
+        for (int p = 0; p < n; ++p) largest = std::max(largest, delta.col(p).norm());
       const double clamp = m_lbfgs_trust * limit / 1.25;
       if (largest > 0 && (largest > clamp || m_lbfgs.empty())) delta *= clamp / largest;
       state.velocities.setZero();

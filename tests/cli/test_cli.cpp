@@ -338,6 +338,14 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {  // and pattern's chart pic
   expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave --chart-png " + (dir / "q.png").string(), dir / "q.bcc",
                  "chart: a woven pattern has no knitting chart: draw its yarn with --png");
   EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
+  // A yarn name the writer refuses is refused before the relaxation (a long run is not lost to it), the report not written either.
+  expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-2x2.knit --relax --free-period --max-steps 1000000 --report " +
+                     (dir / "q.json").string(),
+                 dir / "q.yarn", "q.yarn: yarn is written as .bcc or .obj (polylines)");
+  expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-2x2.knit --relax --preview " + (dir / "v.txt").string(), dir / "q.bcc",
+                 "v.txt: yarn is written as .bcc or .obj (polylines)");
+  expect_refused("relax-yarn " + (dir / "p.bcc").string() + " --max-steps 1000000", dir / "r.yarn", "r.yarn: yarn is written as .bcc or .obj (polylines)");
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.json"));
 }
 
 TEST(Cli, AMeshThatWouldMakeTooManyStitchesIsRefusedBeforeTessellating) {
