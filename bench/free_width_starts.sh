@@ -4,7 +4,7 @@
 # pattern's defaults: L-BFGS, the force rule, the rows held at the emitted height) from three starts, 0.85, 1 and
 # 1.15 times its emitted width (--period), and the widths it ends at are compared; then stockinette at fixed widths
 # from 0.85 to 1.15, for one repeat's energy and the width's stress there. Usage: bench/free_width_starts.sh
-# (prints markdown tables; a run at a time, 2 threads; about 3 minutes on the 2-core machine).
+# (prints markdown tables; a run at a time, 2 threads; about 6 minutes on the 2-core machine).
 source "$(dirname "$0")/common.sh"
 starts() {  # starts LABEL PATTERN ARGS...: one table row, the three starts
   local label=$1 pattern=$2
@@ -33,6 +33,9 @@ starts "2x2 rib, r 0.6 mm" rib-2x2
 starts "stockinette, r 0.9 mm" stockinette --yarn-radius 0.9
 starts "stockinette, r 1.1 mm" stockinette --yarn-radius 1.1
 starts "stockinette, --yarn worsted" stockinette --yarn worsted
+starts "stockinette, r 0.6 mm, take-up 0.8" stockinette --take-up 0.8
+starts "stockinette, r 1.1 mm, take-up 0.85" stockinette --yarn-radius 1.1 --take-up 0.85
+starts "stockinette, r 1.3 mm" stockinette --yarn-radius 1.3
 echo
 echo "| stockinette at a fixed width [mm] | steps | one repeat's energy | the width's stress [B/r³] |"
 echo "| --- | --- | --- | --- |"
