@@ -810,7 +810,9 @@ int run_command_line(int argc, char** argv) {
           take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
           take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
           take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
-          take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
+          // A yarn weight the app saved: relaxed as --yarn WEIGHT, its take-up Munden's (the app's take-up is not used then).
+          if (!saved.weight.empty() && ry->count("--yarn") == 0 && ry->count("--yarn-radius") == 0) ry_fabric.yarn = saved.weight, taken.push_back("--yarn");
+          if (saved.weight.empty() || ry->count("--yarn-radius") > 0) take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
           take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
           take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
           take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
@@ -966,11 +968,11 @@ int run_command_line(int argc, char** argv) {
         const int stitches = static_cast<int>(ids_mesh->faces.size());
         ry_extra["fabric"] = {{"yarn", ry_fabric.yarn}, {"radius_mm", ry_radius_out}, {"contact_radius_mm", ry_radius}, {"munden_loop_length_mm", munden}};
         if (!ry_take_up_given) {
-          ry_take_up *= take_up_to_munden(garment_loop_length(system, stitches), munden, ry_in, "--yarn " + ry_fabric.yarn);
+          ry_take_up *= relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, ry_in, "--yarn " + ry_fabric.yarn);
           system = make_system(ry_take_up);
           ry_extra["fabric"]["take_up_to_munden"] = ry_take_up;
         }
-        const double loop = garment_loop_length(system, stitches);
+        const double loop = relax::garment_loop_length(system, stitches);
         ry_extra["fabric"]["yarn_per_stitch_mm"] = loop;
         spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f}: {:.2f} mm a stitch (Munden's loop length {:.2f} mm)",
                      ry_fabric.yarn, ry_radius, mesh::kYarnCompression, ry_radius_out, ry_take_up, loop, munden);
@@ -1145,7 +1147,7 @@ int run_command_line(int argc, char** argv) {
           pat_extra["fabric"]["contact_radius_mm"] = sim_radius / pat_gamma;
           if (!targets.periodic.empty() && pat->count("--take-up") == 0 && pat_extra["fabric"].contains("munden_loop_length_mm")) {
             const double loop = patch_loop_length(system, targets.periodic, {pattern.width(), pattern.height()}) / pat_gamma;
-            pat_take_up = take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
+            pat_take_up = relax::take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
             system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
             pat_extra["fabric"]["take_up_to_munden"] = pat_take_up;
             spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f} to Munden's loop length {:.2f} mm", pat_fabric.yarn,

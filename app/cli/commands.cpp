@@ -239,21 +239,6 @@ double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicM
   return yarn / (repeat[0] * repeat[1]);
 }
 
-double garment_loop_length(const relax::YarnSystem& system, int stitches) {
-  double yarn = 0;
-  for (double l : system.rest_length) yarn += l;
-  return yarn / std::max(stitches, 1);
-}
-
-double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option) {
-  const double take_up = munden / loop;
-  if (!(take_up > 0.1 && take_up < 2))
-    throw Error(file, option,
-                fmt::format("the take-up to Munden's loop length ({:.3g} mm a stitch against the {:.3g} mm emitted) would be {:.3g}; give --take-up",
-                            munden, loop, take_up));
-  return take_up;
-}
-
 Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given) {
   Fabric out;
   if (choice.yarn.empty() && choice.gauge.empty()) return out;

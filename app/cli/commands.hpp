@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "relax/garment_fabric.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
 #include "render/raster.hpp"
@@ -156,13 +157,6 @@ struct YarnRunOutputs {
 /// A periodic patch's yarn per stitch of its repeat (wales x courses): the rest lengths of the segments that start
 /// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
 double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat);
-
-/// A garment's yarn per stitch: all its rest lengths over its stitch faces (borders included); Munden's l for a
-/// whole garment, as patch_loop_length is for a repeat.
-double garment_loop_length(const relax::YarnSystem& system, int stitches);
-/// The take-up that cuts (or lets out) yarn of `loop` mm per stitch to Munden's loop length `munden` for the gauge
-/// (a yarn weight's fabric, docs/yarn.md); throws skein::Error naming `file` and `option` outside 0.1 to 2.
-double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option);
 
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
 /// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes

@@ -500,11 +500,11 @@ int run_job(const Job& job, bool resume, bool progress) {
         const int stitches = static_cast<int>(project.stitch->faces.size());
         json fabric = {{"yarn", job.yarn_weight}, {"radius_mm", job.yarn_radius}, {"contact_radius_mm", yarn.radius}, {"munden_loop_length_mm", munden}};
         if (!job.take_up) {
-          const double take_up = take_up_to_munden(garment_loop_length(system, stitches), munden, job.file.string(), "key 'yarn.weight'");
+          const double take_up = relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, job.file.string(), "key 'yarn.weight'");
           system = relax::make_yarn_system(yarn, take_up, {}, options.sampling);
           fabric["take_up_to_munden"] = take_up;
         }
-        fabric["yarn_per_stitch_mm"] = garment_loop_length(system, stitches);
+        fabric["yarn_per_stitch_mm"] = relax::garment_loop_length(system, stitches);
         run.report()["fabric"] = fabric;
       }
       const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);

@@ -27,6 +27,8 @@
 #include "render/stitch_view.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/tessellation.hpp"
+#include "relax/garment_fabric.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/yarn_emission.hpp"
 #include "viewport.hpp"
 #include "yarn_settings.hpp"
@@ -34,9 +36,14 @@
 namespace skein::gui {
 namespace {
 
-/// The yarn of the state's stitch mesh as emitted, at a tenth of the stitch width.
-mesh::YarnCurves emitted_yarn(const EditState& state) {
-  return mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = 0.1 * state.stitch_size.width});
+/// The yarn of the state's stitch mesh as emitted: at a tenth of the stitch width, or with a yarn weight in the
+/// settings at the weight's compressed contact radius and drawn at its full one (YarnRelaxJob relaxes it at the first).
+mesh::YarnCurves emitted_yarn(const EditState& state, const YarnSettings& settings) {
+  if (settings.weight.empty()) return mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = 0.1 * state.stitch_size.width});
+  const auto fabric = relax::garment_fabric(settings.weight, state.stitch_size);
+  auto yarn = mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = fabric.contact_radius});
+  yarn.radius = fabric.radius;
+  return yarn;
 }
 
 std::filesystem::path fs_path(const QString& path) { return std::filesystem::path(path.toStdString()); }
@@ -226,6 +233,21 @@ void MainWindow::build_actions() {
     if (!ok) return;
     const double h = QInputDialog::getDouble(this, tr("Stitch size"), tr("Stitch height along the wale [mm]"), m_doc.state().stitch_size.height, 0.1, 1000, 2, &ok);
     if (ok) attempt([&] { m_doc.set_stitch_size({w, h}); });
+  }, {}, true);
+  add(stitch, tr("Stitch size from &gauge..."), "stitchGauge", [this] {
+    // A gauge as a yarn label gives it: stitches and rows in 10 cm of stockinette (rows 0: Munden's loop shape, 1.3 x).
+    const auto now = mesh::gauge_of(m_doc.state().stitch_size);
+    bool ok = false;
+    const double st = QInputDialog::getDouble(this, tr("Gauge"), tr("Stitches in 10 cm of stockinette"), now.stitches, 0.1, 1000, 1, &ok);
+    if (!ok) return;
+    const double rows = QInputDialog::getDouble(this, tr("Gauge"), tr("Rows in 10 cm (0: %1 x the stitches, relaxed plain knit)").arg(mesh::kLoopShapeFactor),
+                                                0, 0, 1000, 1, &ok);
+    if (!ok) return;
+    attempt([&] {
+      const mesh::Gauge gauge{st, rows > 0 ? rows : mesh::kLoopShapeFactor * st};
+      gauge.validate();
+      m_doc.set_stitch_size(gauge.stitch_size());
+    });
   }, {}, true);
   tool(stitch, tr("Tessellation &value"), "toolEdgeValue", Tool::EdgeValue, tr("Click an edge: set how many stitches (course) or stitch rows (wale) it gets"));
   tool(stitch, tr("&Mark wale edge"), "toolMarkWale", Tool::MarkWale, tr("Click a wale edge: increases and decreases of its faces go next to it"));
@@ -663,12 +685,14 @@ bool MainWindow::stitch_yarn_action(const std::function<void(const EditState&)>&
 }
 
 bool MainWindow::emit_yarn() {
-  return stitch_yarn_action([&](const EditState& state) { m_doc.set_yarn(emitted_yarn(state), false, tr("Emit yarn")); });
+  return stitch_yarn_action([&](const EditState& state) { m_doc.set_yarn(emitted_yarn(state, m_doc.yarn_settings()), false, tr("Emit yarn")); });
 }
 
 bool MainWindow::preview_yarn() {
   return stitch_yarn_action([&](const EditState& state) {
-    const auto yarn = emitted_yarn(state);
+    if (!m_doc.yarn_settings().weight.empty())
+      throw Error("the stand-in preview relaxes its repeats at the emitted radius, not a yarn weight's: set Yarn weight to none in Relax > Yarn settings");
+    const auto yarn = emitted_yarn(state, m_doc.yarn_settings());
     auto options = m_doc.yarn_settings().relax;
     options.audit = false;  // the preview is certified on its own straight path from the emission
     relax::StandInOptions stand_in;
@@ -703,13 +727,18 @@ bool MainWindow::relax_yarn() {
       throw Error("the clipped stop scale runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
     m_job_is_yarn = true;
     // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
-    const auto start = state.yarn_preview ? emitted_yarn(state) : *state.yarn;
-    auto* job = new YarnRelaxJob(start, *state.stitch, m_doc.yarn_settings(), m_backend);
-    // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn.
-    if (state.previous) job->warm_start(state.previous->stitch, state.previous->relaxed);
+    const auto start = state.yarn_preview ? emitted_yarn(state, m_doc.yarn_settings()) : *state.yarn;
+    auto* job = new YarnRelaxJob(start, *state.stitch, state.stitch_size, m_doc.yarn_settings(), m_backend);
+    // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn (at the emitted
+    // radius: a yarn weight's garment relaxes whole, as relax-yarn --yarn refuses --warm-start).
+    const bool local = state.previous && m_doc.yarn_settings().weight.empty();
+    if (local) job->warm_start(state.previous->stitch, state.previous->relaxed);
     start_job(job);
     set_layer(Layer::Yarn);
-    m_job_label->setText(state.previous ? tr("Relaxing the changed stitches...") : tr("Relaxing the yarn..."));
+    m_job_label->setText(local ? tr("Relaxing the changed stitches...")
+                         : m_doc.yarn_settings().weight.empty()
+                             ? tr("Relaxing the yarn...")
+                             : tr("Relaxing the yarn as %1 (Munden's loop length)...").arg(QString::fromStdString(m_doc.yarn_settings().weight)));
   });
 }
 
@@ -804,8 +833,19 @@ void MainWindow::on_job_finished() {
                                     "(relax the stitch mesh first, or lower the stop tolerance)")
                                      .arg(100 * p.first_residual_peak, 0, 'f', 0)
                                : QString();
-      m_job_label->setText(
-          tr("yarn %1 after %2 steps on %3, %4%5%6").arg(ended).arg(p.step).arg(yarn_job.backend()).arg(audit).arg(active).arg(peak));
+      const QString fabric = m_doc.yarn_settings().weight.empty()
+                                 ? QString()
+                                 : tr(", as %1 yarn (take-up %2: Munden's loop length)")
+                                       .arg(QString::fromStdString(m_doc.yarn_settings().weight))
+                                       .arg(yarn_job.take_up(), 0, 'f', 3);
+      m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4%5%6%7")
+                               .arg(ended)
+                               .arg(p.step)
+                               .arg(yarn_job.backend())
+                               .arg(audit)
+                               .arg(fabric)
+                               .arg(active)
+                               .arg(peak));
     }
   } else {
     auto& mesh_job = static_cast<MeshRelaxJob&>(*job);

@@ -1,6 +1,9 @@
 #include "relax_jobs.hpp"
 
+#include <tuple>
+
 #include "cuda/yarn_relaxer.hpp"
+#include "relax/garment_fabric.hpp"
 #include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/stitch_model.hpp"
@@ -81,16 +84,30 @@ void MeshRelaxJob::run() {
   emit updated();
 }
 
-YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const YarnSettings& settings, relax::Backend backend,
-                           QObject* parent)
+namespace {
+
+/// The yarn as it relaxes (a weight's at its contact radius) and its take-up (a weight's to Munden's loop length).
+std::pair<mesh::YarnCurves, double> relaxed_as(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size,
+                                               const YarnSettings& settings) {
+  if (settings.weight.empty()) return {std::move(yarn), settings.take_up};
+  const auto fabric = relax::garment_fabric(settings.weight, size);
+  yarn.radius = fabric.contact_radius;
+  const double loop = relax::garment_loop_length(relax::make_yarn_system(yarn, 1.0, {}, settings.relax.sampling), static_cast<int>(stitch.faces.size()));
+  return {std::move(yarn), relax::take_up_to_munden(loop, fabric.munden_loop_length, "", "yarn weight " + fabric.yarn)};
+}
+
+}  // namespace
+
+YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
+                           relax::Backend backend, QObject* parent)
     : RelaxJob(parent),
-      m_yarn(std::move(yarn)),
+      m_drawn_radius(yarn.radius),
       m_stitch(stitch),
-      m_system(relax::make_yarn_system(m_yarn, settings.take_up, {}, settings.relax.sampling)),
       m_options(settings.relax),
-      m_take_up(settings.take_up),
       m_local_options(settings.local),
       m_backend(backend) {
+  std::tie(m_yarn, m_take_up) = relaxed_as(std::move(yarn), stitch, size, settings);
+  m_system = relax::make_yarn_system(m_yarn, m_take_up, {}, settings.relax.sampling);
   m_targets = relax::shape_targets(stitch, m_yarn, m_options.shape);
   m_options.interrupt = &m_interrupt;
   m_progress.max_steps = m_options.max_steps;
@@ -125,7 +142,9 @@ std::optional<relax::ActiveSetCounters> YarnRelaxJob::active_set() const {
 
 mesh::YarnCurves YarnRelaxJob::yarn() const {
   std::lock_guard lock(m_mutex);
-  return relax::with_points(m_yarn, m_points);
+  auto out = relax::with_points(m_yarn, m_points);
+  out.radius = m_drawn_radius;
+  return out;
 }
 
 QString YarnRelaxJob::backend() const {

@@ -80,14 +80,17 @@ private:
 class YarnRelaxJob final : public RelaxJob {
   Q_OBJECT
 public:
-  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const YarnSettings& settings, relax::Backend backend,
-               QObject* parent = nullptr);
+  /// With a yarn weight in the settings, `yarn` is emitted at its contact radius (its `radius` the full one, as drawn):
+  /// it relaxes at the contact radius with its rest lengths cut to Munden's loop length for `size` (relax::garment_fabric).
+  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
+               relax::Backend backend, QObject* parent = nullptr);
   ~YarnRelaxJob() override;
   /// Before the first start: begin from `previous_relaxed`, the relaxed yarn of `previous_stitch`, and relax
   /// only the stitches changed since and the settings' rings around them (relax::relax_locally, on the CPU). A splice that
   /// would pass yarn through yarn is not used: the whole yarn relaxes then.
   void warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed);
-  mesh::YarnCurves yarn() const;  ///< the latest points
+  mesh::YarnCurves yarn() const;  ///< the latest points (at the radius the yarn is drawn at)
+  double take_up() const { return m_take_up; }  ///< the take-up the yarn relaxes with (a weight's: to Munden's loop length)
   QString backend() const;
   /// What the local relaxation did, once it ran.
   std::optional<relax::LocalRelaxReport> local() const;
@@ -100,7 +103,8 @@ protected:
 private:
   void publish(const relax::YarnStepLog& log);
 
-  mesh::YarnCurves m_yarn;
+  mesh::YarnCurves m_yarn;  ///< at the radius it relaxes at
+  double m_drawn_radius;    ///< the radius yarn() gives it
   mesh::StitchMesh m_stitch;
   std::optional<relax::Splice> m_splice;          ///< a warm start not yet run
   std::optional<relax::LocalRelaxReport> m_local;  ///< a warm start run

@@ -11,6 +11,8 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "stitchmesh/fabric.hpp"
+
 
 namespace skein::gui {
 
@@ -61,6 +63,18 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
                       tr("Stop, not converged, when for this many steps in a row the guard held yarn against yarn and the energy hardly fell "
                          "(0: never)"));
   m_take_up = number("takeUp", 0.1, 10, 0.01, 3, settings.take_up, tr("Rest length of the yarn × its emitted length: below 1 the yarn pulls tighter"));
+  m_weight = new QComboBox;
+  m_weight->setObjectName("weight");
+  m_weight->addItem(tr("none (a tenth of the stitch width)"), QString());
+  for (const auto& w : mesh::yarn_weights())
+    m_weight->addItem(tr("%1 (CYC %2, %3 mm)").arg(QString::fromStdString(w.name)).arg(w.category).arg(w.diameter(), 0, 'f', 2), QString::fromStdString(w.name));
+  m_weight->setCurrentIndex(std::max(0, m_weight->findData(QString::fromStdString(settings.weight))));
+  m_weight->setToolTip(tr("A yarn weight class: the yarn is emitted and relaxed at its compressed contact radius, cut to Munden's loop length "
+                          "for the stitch width (the take-up is not used) and drawn at its full radius; the stand-in preview and local "
+                          "re-relaxation after edits keep the emitted radius and need none"));
+  const auto weight_set = [this] { m_take_up->setEnabled(m_weight->currentIndex() == 0); };
+  weight_set();
+  connect(m_weight, &QComboBox::currentIndexChanged, this, weight_set);
   m_clipped = flag("clippedScale", tr("Stop scale without the largest 0.1 % of the first forces (CPU)"), r.clipped_scale,
                    tr("Leaf's stop rule measures |∇E| against |∇E₀|; clipped, a few kinks of the emitted yarn do not set that scale, and "
                       "the run relaxes further (and longer)"));
@@ -86,6 +100,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   form->addRow(tr("Step cap"), m_max_steps);
   form->addRow(tr("Stop when jammed for [steps]"), m_jam_steps);
   form->addRow(m_clipped);
+  form->addRow(tr("Yarn weight"), m_weight);
   form->addRow(tr("Take-up"), m_take_up);
   form->addRow(m_audit);
   form->addRow(m_active_set);
@@ -104,6 +119,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
     m_jam_steps->setValue(static_cast<int>(defaults.relax.jam_steps));
     m_clipped->setChecked(defaults.relax.clipped_scale);
     m_take_up->setValue(defaults.take_up);
+    m_weight->setCurrentIndex(0);
     m_audit->setChecked(defaults.relax.audit);
     m_active_set->setChecked(defaults.relax.active_set.enabled);
     m_adaptive->setChecked(false);
@@ -123,6 +139,7 @@ YarnSettings YarnSettingsDialog::settings() const {
   s.relax.jam_steps = m_jam_steps->value();
   s.relax.clipped_scale = m_clipped->isChecked();
   s.take_up = m_take_up->value();
+  s.weight = m_weight->currentData().toString().toStdString();
   s.relax.audit = m_audit->isChecked();
   s.relax.active_set.enabled = m_active_set->isChecked();
   s.relax.sampling.spacing = m_adaptive->isChecked() ? m_spacing->value() : 0;

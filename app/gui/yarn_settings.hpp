@@ -15,7 +15,7 @@ namespace skein::gui {
 using YarnSettings = relax::YarnSettings;
 
 /// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, jamSteps,
-/// clippedScale, takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
+/// clippedScale, weight, takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.
 class YarnSettingsDialog final : public QDialog {
   Q_OBJECT
 public:
@@ -25,7 +25,7 @@ public:
 
 private:
   YarnSettings m_base;
-  QComboBox* m_method = nullptr;
+  QComboBox *m_method = nullptr, *m_weight = nullptr;
   QDoubleSpinBox *m_tolerance = nullptr, *m_take_up = nullptr, *m_spacing = nullptr;
   QSpinBox *m_max_steps = nullptr, *m_jam_steps = nullptr, *m_rings = nullptr, *m_halo = nullptr;
   QCheckBox *m_clipped = nullptr, *m_audit = nullptr, *m_active_set = nullptr, *m_adaptive = nullptr;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "stitchmesh/fabric.hpp"
 
 namespace skein::relax {
 namespace {
@@ -53,6 +54,14 @@ const std::map<std::string, Key>& keys() {
                            }}},
       {"yarn.jam_steps", {[](const YarnSettings& s) { return std::to_string(s.relax.jam_steps); }, [](YarnSettings& s, const std::string& v) { s.relax.jam_steps = number<long>(v); }}},
       {"yarn.rings", {[](const YarnSettings& s) { return std::to_string(s.local.rings); }, [](YarnSettings& s, const std::string& v) { s.local.rings = number<int>(v); }}},
+      {"yarn.weight", {[](const YarnSettings& s) { return s.weight.empty() ? std::string("none") : s.weight; },
+                       [](YarnSettings& s, const std::string& v) {
+                         try {
+                           s.weight = v == "none" ? std::string() : mesh::find_yarn_weight(v).name;
+                         } catch (const Error& e) {
+                           throw Error("", "", "'" + v + "' " + e.rule() + ", or none");
+                         }
+                       }}},
       {"yarn.halo", {[](const YarnSettings& s) { return std::to_string(s.local.halo); }, [](YarnSettings& s, const std::string& v) { s.local.halo = number<int>(v); }}},
   };
   return table;

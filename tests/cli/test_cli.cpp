@@ -885,6 +885,22 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
   EXPECT_NEAR(relaxed.at("fabric").at("yarn_per_stitch_mm").get<double>(), 0.95 * munden / to_munden, 1e-6 * munden);
   // Refused where a weight's compressed contact cannot hold: a preview that keeps the emitted radius.
   expect_refused("relax-yarn " + project + " --yarn dk --stand-in", dir / "s.bcc", "--yarn: relaxes a whole garment");
+  // A weight the app saved with the project (set yarn.weight) is taken as --yarn, with Munden's take-up over its saved one.
+  auto text = slurp(project);
+  text.insert(text.rfind("end"), "set yarn.weight dk\nset yarn.take_up 0.8\n");
+  const auto saved = dir.write("saved.skein", text);
+  r = run_skein("relax-yarn " + saved.string() + " --max-steps 0 --no-audit -o " + (dir / "w.bcc").string() + " --report " + (dir / "w.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--yarn"), std::string::npos) << r.output;
+  relaxed = nlohmann::json::parse(slurp(dir / "w.json"));
+  EXPECT_EQ(relaxed.at("fabric").at("yarn").get<std::string>(), "dk");
+  EXPECT_NEAR(relaxed.at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
+  EXPECT_NEAR(skein::relax::read_bcc(dir / "w.bcc").radius, full, 1e-9);
+  // The command line's own radius wins over the saved weight.
+  r = run_skein("relax-yarn " + saved.string() + " --yarn-radius 1 --max-steps 0 --no-audit -o " + (dir / "x.bcc").string() + " --report " +
+                (dir / "x.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(nlohmann::json::parse(slurp(dir / "x.json")).contains("fabric"));
 }
 
 TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {

@@ -6,6 +6,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QPushButton>
@@ -531,6 +532,39 @@ private slots:
     QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
   }
 
+  void a_yarn_weight_relaxes_the_garment_as_that_yarn() {
+    // The dialog offers the weight classes; with one, the take-up is Munden's and its field is off.
+    gui::YarnSettingsDialog dialog(gui::YarnSettings{});
+    auto* weight = dialog.findChild<QComboBox*>("weight");
+    QVERIFY(weight && dialog.findChild<QDoubleSpinBox*>("takeUp")->isEnabled());
+    weight->setCurrentIndex(weight->findData(QString("dk")));
+    QVERIFY(!dialog.findChild<QDoubleSpinBox*>("takeUp")->isEnabled());
+    auto settings = dialog.settings();
+    QCOMPARE(settings.weight, std::string("dk"));
+    dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::RestoreDefaults)->click();
+    QCOMPARE(dialog.settings().weight, std::string());
+
+    MainWindow w;
+    QVERIFY(swatch_yarn_shown(w));
+    auto& doc = w.document();
+    settings.relax.max_steps = 20;
+    QVERIFY(w.set_yarn_settings(settings));
+    // Emitted at dk's compressed contact radius and drawn at its full one; the preview keeps the emitted radius: refused.
+    const double full = 25.4 / 13 / 2;
+    QVERIFY(w.emit_yarn());
+    QCOMPARE(doc.state().yarn->radius, full);
+    const auto emitted = doc.state().yarn->points;
+    QVERIFY(!w.preview_yarn());
+    QVERIFY2(w.last_error().contains("Yarn weight"), qPrintable(w.last_error()));
+    QSignalSpy finished(&w, &MainWindow::job_finished);
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(300000));
+    QCOMPARE(doc.state().yarn->radius, full);
+    QVERIFY(doc.state().yarn_relaxed);
+    QVERIFY(doc.state().yarn->points != emitted);
+    QVERIFY2(w.job_text().contains(", 0 pull-through events") && w.job_text().contains("as dk yarn (take-up "), qPrintable(w.job_text()));
+  }
+
   void yarn_settings_are_saved_with_the_project() {
     QTemporaryDir dir;
     MainWindow w;
@@ -539,6 +573,7 @@ private slots:
     settings.relax.tolerance = 0.004;
     settings.take_up = 0.92;
     settings.local.rings = 2;
+    settings.weight = "sport";
     QVERIFY(w.set_yarn_settings(settings));
     const QString path = dir.filePath("swatch.skein");
     QVERIFY2(w.save_project(path), qPrintable(w.last_error()));
@@ -547,6 +582,7 @@ private slots:
     QCOMPARE(other.yarn_settings().relax.tolerance, 0.004);
     QCOMPARE(other.yarn_settings().take_up, 0.92);
     QCOMPARE(other.yarn_settings().local.rings, 2);
+    QCOMPARE(other.yarn_settings().weight, std::string("sport"));
     // A project with a setting this skein does not know is refused, naming its line; what is open stays.
     QFile saved(path);
     QVERIFY(saved.open(QIODevice::ReadOnly));

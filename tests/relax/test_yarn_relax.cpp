@@ -609,8 +609,9 @@ TEST(YarnSettings, WrittenAsProjectLinesTheyReadBackTheSame) {
   s.relax.clipped_scale = true;
   s.local.rings = 2;
   s.local.halo = 3;
+  s.weight = "worsted";
   const auto lines = yarn_setting_lines(s);
-  EXPECT_EQ(lines.size(), 11u);
+  EXPECT_EQ(lines.size(), 12u);
   const auto back = read_yarn_settings(lines, "p.skein");
   EXPECT_EQ(back.relax.method, s.relax.method);
   EXPECT_EQ(back.relax.tolerance, s.relax.tolerance);
@@ -623,10 +624,18 @@ TEST(YarnSettings, WrittenAsProjectLinesTheyReadBackTheSame) {
   EXPECT_EQ(back.relax.clipped_scale, s.relax.clipped_scale);
   EXPECT_EQ(back.local.rings, s.local.rings);
   EXPECT_EQ(back.local.halo, s.local.halo);
-  // A project without settings: the defaults.
+  EXPECT_EQ(back.weight, "worsted");
+  // A project without settings: the defaults (no yarn weight: written as none). A weight by alias or CYC number.
   const auto none = read_yarn_settings({}, "p.skein");
   EXPECT_EQ(none.relax.tolerance, YarnRelaxOptions{}.tolerance);
   EXPECT_EQ(none.take_up, 1.0);
+  EXPECT_EQ(none.weight, "");
+  for (const auto& line : yarn_setting_lines(none))
+    if (line.key == "yarn.weight") {
+      EXPECT_EQ(line.value, "none");
+    }
+  EXPECT_EQ(read_yarn_settings({{"yarn.weight", "aran", 3}}, "p.skein").weight, "worsted");
+  EXPECT_EQ(read_yarn_settings({{"yarn.weight", "3", 3}}, "p.skein").weight, "dk");
 }
 
 TEST(YarnSettings, BadLinesNameTheFileTheLineAndTheRule) {
@@ -639,6 +648,7 @@ TEST(YarnSettings, BadLinesNameTheFileTheLineAndTheRule) {
       {{"yarn.take_up", "20", 7}, "between 0.1 and 10"},
       {{"yarn.jam_steps", "-3", 7}, "jam_steps must be 0 (never) or more"},
       {{"yarn.stop_scale", "median", 7}, "'median' is neither first nor clipped"},
+      {{"yarn.weight", "wool", 7}, "'wool' is not a yarn weight; one of lace, fingering"},
   };
   for (const auto& [line, rule] : cases) {
     const std::string msg = skein::testing::error_of([&] { read_yarn_settings({line}, "p.skein"); });
