@@ -46,6 +46,11 @@ mesh::YarnCurves emitted_yarn(const EditState& state, const YarnSettings& settin
   return yarn;
 }
 
+/// The radius emitted_yarn draws the yarn at.
+double drawn_radius(const EditState& state, const YarnSettings& settings) {
+  return settings.weight.empty() ? 0.1 * state.stitch_size.width : relax::garment_fabric(settings.weight, state.stitch_size).radius;
+}
+
 std::filesystem::path fs_path(const QString& path) { return std::filesystem::path(path.toStdString()); }
 
 QIcon swatch(const Eigen::Vector3f& color) {
@@ -726,8 +731,10 @@ bool MainWindow::relax_yarn() {
     if (m_doc.yarn_settings().relax.clipped_scale && m_backend == relax::Backend::Cuda)
       throw Error("the clipped stop scale runs on the CPU only: choose Relax > Yarn backend > CPU or Auto, or turn it off in Relax > Yarn settings");
     m_job_is_yarn = true;
-    // A stand-in preview is only a look: the relaxation starts from the emitted yarn (its rest lengths).
-    const auto start = state.yarn_preview ? emitted_yarn(state, m_doc.yarn_settings()) : *state.yarn;
+    // A stand-in preview is only a look, and yarn emitted before the yarn weight changed is another yarn: then the
+    // relaxation starts from the emission for the settings (its rest lengths).
+    const bool emitted = !state.yarn_preview && state.yarn->radius == drawn_radius(state, m_doc.yarn_settings());
+    const auto start = emitted ? *state.yarn : emitted_yarn(state, m_doc.yarn_settings());
     auto* job = new YarnRelaxJob(start, *state.stitch, state.stitch_size, m_doc.yarn_settings(), m_backend);
     // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn (at the emitted
     // radius: a yarn weight's garment relaxes whole, as relax-yarn --yarn refuses --warm-start).

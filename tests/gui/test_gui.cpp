@@ -563,6 +563,16 @@ private slots:
     QVERIFY(doc.state().yarn_relaxed);
     QVERIFY(doc.state().yarn->points != emitted);
     QVERIFY2(w.job_text().contains(", 0 pull-through events") && w.job_text().contains("as dk yarn (take-up "), qPrintable(w.job_text()));
+    // Yarn emitted before the weight was chosen is emitted again for it when the relaxation starts.
+    settings.weight.clear();
+    QVERIFY(w.set_yarn_settings(settings));
+    QVERIFY(w.emit_yarn());
+    QCOMPARE(doc.state().yarn->radius, 0.6);
+    settings.weight = "dk";
+    QVERIFY(w.set_yarn_settings(settings));
+    QVERIFY(w.relax_yarn());
+    QVERIFY(finished.wait(300000));
+    QCOMPARE(doc.state().yarn->radius, full);
   }
 
   void yarn_settings_are_saved_with_the_project() {
