@@ -797,6 +797,7 @@ int run_command_line(int argc, char** argv) {
         if (!p.empty()) check_writable(p);
       if (!ry_out.empty()) check_yarn_output(ry_out);
       bool ry_take_up_given = ry->count("--take-up") > 0;
+      std::string ry_weight_option = "--yarn";  // where the yarn weight came from, for its errors
       if (is_project(ry_in) && std::filesystem::exists(ry_in)) {
         // The yarn settings the app saved with the project stand where the command line gives none.
         const auto project = mesh::read_project(ry_in);
@@ -810,9 +811,11 @@ int run_command_line(int argc, char** argv) {
           take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
           take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
           take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
-          // A yarn weight the app saved: relaxed as --yarn WEIGHT, its take-up Munden's (the app's take-up is not used then).
-          if (!saved.weight.empty() && ry->count("--yarn") == 0 && ry->count("--yarn-radius") == 0) ry_fabric.yarn = saved.weight, taken.push_back("--yarn");
-          if (saved.weight.empty() || ry->count("--yarn-radius") > 0) take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
+          // A yarn weight the app saved: relaxed as --yarn WEIGHT. A weight's take-up is Munden's unless the command line
+          // gives one: the app's take-up is not used with a weight, saved or given.
+          if (!saved.weight.empty() && ry->count("--yarn") == 0 && ry->count("--yarn-radius") == 0)
+            ry_fabric.yarn = saved.weight, ry_weight_option = "set yarn.weight " + saved.weight, taken.push_back("--yarn");
+          if (ry_fabric.yarn.empty()) take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
           take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
           take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
           take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
@@ -828,7 +831,9 @@ int run_command_line(int argc, char** argv) {
       if (const auto fabric = resolve_fabric(ry_fabric, false, ry->count("--yarn-radius") > 0); fabric.radius) {
         if (is_bcc(ry_in)) throw Error("", "--yarn", "sets the radius of yarn emitted from a project; a .bcc keeps its own");
         if (ry_stand_in || !ry_warm.empty())
-          throw Error("", "--yarn", "relaxes a whole garment at the weight's compressed contact radius, not --stand-in or --warm-start (give --yarn-radius)");
+          throw Error(ry_weight_option == "--yarn" ? "" : ry_in, ry_weight_option,
+                      "relaxes a whole garment at the weight's compressed contact radius, not --stand-in or --warm-start (give --yarn-radius" +
+                          std::string(ry_weight_option == "--yarn" ? ")" : ", or set yarn.weight none)"));
         ry_radius_out = *fabric.radius;
         ry_radius = mesh::kYarnCompression * ry_radius_out;
       }
@@ -968,7 +973,8 @@ int run_command_line(int argc, char** argv) {
         const int stitches = static_cast<int>(ids_mesh->faces.size());
         ry_extra["fabric"] = {{"yarn", ry_fabric.yarn}, {"radius_mm", ry_radius_out}, {"contact_radius_mm", ry_radius}, {"munden_loop_length_mm", munden}};
         if (!ry_take_up_given) {
-          ry_take_up *= relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, ry_in, "--yarn " + ry_fabric.yarn);
+          ry_take_up *= relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, ry_in,
+                                                 ry_weight_option == "--yarn" ? "--yarn " + ry_fabric.yarn : ry_weight_option);
           system = make_system(ry_take_up);
           ry_extra["fabric"]["take_up_to_munden"] = ry_take_up;
         }

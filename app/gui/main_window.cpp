@@ -738,7 +738,7 @@ bool MainWindow::relax_yarn() {
     auto* job = new YarnRelaxJob(start, *state.stitch, state.stitch_size, m_doc.yarn_settings(), m_backend);
     // After stitch edits: only the changed stitches and rings around them, from the last relaxed yarn (at the emitted
     // radius: a yarn weight's garment relaxes whole, as relax-yarn --yarn refuses --warm-start).
-    const bool local = state.previous && m_doc.yarn_settings().weight.empty();
+    const bool local = state.previous && m_doc.yarn_settings().weight.empty() && state.previous->relaxed.radius == start.radius;
     if (local) job->warm_start(state.previous->stitch, state.previous->relaxed);
     start_job(job);
     set_layer(Layer::Yarn);
@@ -840,10 +840,10 @@ void MainWindow::on_job_finished() {
                                     "(relax the stitch mesh first, or lower the stop tolerance)")
                                      .arg(100 * p.first_residual_peak, 0, 'f', 0)
                                : QString();
-      const QString fabric = m_doc.yarn_settings().weight.empty()
+      const QString fabric = yarn_job.weight().empty()
                                  ? QString()
                                  : tr(", as %1 yarn (take-up %2: Munden's loop length)")
-                                       .arg(QString::fromStdString(m_doc.yarn_settings().weight))
+                                       .arg(QString::fromStdString(yarn_job.weight()))
                                        .arg(yarn_job.take_up(), 0, 'f', 3);
       m_job_label->setText(tr("yarn %1 after %2 steps on %3, %4%5%6%7")
                                .arg(ended)

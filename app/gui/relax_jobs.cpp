@@ -93,7 +93,8 @@ std::pair<mesh::YarnCurves, double> relaxed_as(mesh::YarnCurves yarn, const mesh
   const auto fabric = relax::garment_fabric(settings.weight, size);
   yarn.radius = fabric.contact_radius;
   const double loop = relax::garment_loop_length(relax::make_yarn_system(yarn, 1.0, {}, settings.relax.sampling), static_cast<int>(stitch.faces.size()));
-  return {std::move(yarn), relax::take_up_to_munden(loop, fabric.munden_loop_length, "", "yarn weight " + fabric.yarn)};
+  return {std::move(yarn), relax::take_up_to_munden(loop, fabric.munden_loop_length, "", "yarn weight " + fabric.yarn,
+                                                    "choose another yarn weight or stitch size (Stitch > Stitch size from gauge)")};
 }
 
 }  // namespace
@@ -102,6 +103,7 @@ YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch
                            relax::Backend backend, QObject* parent)
     : RelaxJob(parent),
       m_drawn_radius(yarn.radius),
+      m_weight(settings.weight),
       m_stitch(stitch),
       m_options(settings.relax),
       m_local_options(settings.local),

@@ -91,6 +91,7 @@ public:
   void warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed);
   mesh::YarnCurves yarn() const;  ///< the latest points (at the radius the yarn is drawn at)
   double take_up() const { return m_take_up; }  ///< the take-up the yarn relaxes with (a weight's: to Munden's loop length)
+  const std::string& weight() const { return m_weight; }  ///< the yarn weight it relaxes as ("": none)
   QString backend() const;
   /// What the local relaxation did, once it ran.
   std::optional<relax::LocalRelaxReport> local() const;
@@ -105,6 +106,7 @@ private:
 
   mesh::YarnCurves m_yarn;  ///< at the radius it relaxes at
   double m_drawn_radius;    ///< the radius yarn() gives it
+  std::string m_weight;
   mesh::StitchMesh m_stitch;
   std::optional<relax::Splice> m_splice;          ///< a warm start not yet run
   std::optional<relax::LocalRelaxReport> m_local;  ///< a warm start run

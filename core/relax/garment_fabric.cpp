@@ -20,12 +20,12 @@ double garment_loop_length(const YarnSystem& system, int stitches) {
   return yarn / std::max(stitches, 1);
 }
 
-double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option) {
+double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option, const std::string& remedy) {
   const double take_up = munden / loop;
   if (!(take_up > 0.1 && take_up < 2))
     throw Error(file, option,
-                fmt::format("the take-up to Munden's loop length ({:.3g} mm a stitch against the {:.3g} mm emitted) would be {:.3g}; give --take-up",
-                            munden, loop, take_up));
+                fmt::format("the take-up to Munden's loop length ({:.3g} mm a stitch against the {:.3g} mm emitted) would be {:.3g}; {}", munden,
+                            loop, take_up, remedy));
   return take_up;
 }
 

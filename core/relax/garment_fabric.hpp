@@ -23,7 +23,8 @@ GarmentFabric garment_fabric(const std::string& weight, const mesh::StitchSize& 
 /// whole garment, as a repeat's yarn over its stitches is for a periodic patch.
 double garment_loop_length(const YarnSystem& system, int stitches);
 /// The take-up that cuts (or lets out) yarn of `loop` mm per stitch to Munden's loop length `munden`; throws
-/// skein::Error naming `file` and `option` outside 0.1 to 2.
-double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option);
+/// skein::Error naming `file` and `option` outside 0.1 to 2, its rule ending in `remedy`.
+double take_up_to_munden(double loop, double munden, const std::string& file, const std::string& option,
+                         const std::string& remedy = "give --take-up");
 
 }  // namespace skein::relax

@@ -896,6 +896,17 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
   EXPECT_EQ(relaxed.at("fabric").at("yarn").get<std::string>(), "dk");
   EXPECT_NEAR(relaxed.at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
   EXPECT_NEAR(skein::relax::read_bcc(dir / "w.bcc").radius, full, 1e-9);
+  // A saved weight cannot hold where --yarn cannot: the error names the project's line.
+  expect_refused("relax-yarn " + saved.string() + " --stand-in", dir / "s.bcc", "set yarn.weight dk: relaxes a whole garment");
+  // Other saved settings do not stop --yarn from cutting the yarn to Munden's loop length (a saved take-up is the app's,
+  // which it does not use with a weight).
+  text = slurp(project);
+  text.insert(text.rfind("end"), "set yarn.tolerance 0.01\nset yarn.take_up 0.8\n");
+  const auto other = dir.write("other.skein", text);
+  r = run_skein("relax-yarn " + other.string() + " --yarn dk --max-steps 0 --no-audit -o " + (dir / "o.bcc").string() + " --report " +
+                (dir / "o.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NEAR(nlohmann::json::parse(slurp(dir / "o.json")).at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
   // The command line's own radius wins over the saved weight.
   r = run_skein("relax-yarn " + saved.string() + " --yarn-radius 1 --max-steps 0 --no-audit -o " + (dir / "x.bcc").string() + " --report " +
                 (dir / "x.json").string());
