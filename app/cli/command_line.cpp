@@ -815,6 +815,8 @@ int run_command_line(int argc, char** argv) {
           // gives one: the app's take-up is not used with a weight, saved or given.
           if (!saved.weight.empty() && ry->count("--yarn") == 0 && ry->count("--yarn-radius") == 0)
             ry_fabric.yarn = saved.weight, ry_weight_option = "set yarn.weight " + saved.weight, taken.push_back("--yarn");
+          else if (!saved.weight.empty())
+            spdlog::info("{} saves the yarn weight {}: not used, the command line gives {}", ry_in, saved.weight, ry->count("--yarn") ? "--yarn" : "--yarn-radius");
           if (ry_fabric.yarn.empty()) take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
           take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
           take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });

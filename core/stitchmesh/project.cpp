@@ -39,7 +39,8 @@ public:
   std::string_view word(size_t i) const { return m_tokens[i]; }
   void expect_count(size_t min, size_t max, const char* what) const {
     if (m_tokens.size() < min || m_tokens.size() > max)
-      fail(std::string("expected ") + what + ", found " + std::to_string(m_tokens.size() - 1) + " values after '" + std::string(m_tokens[0]) + "'");
+      fail(std::string("expected ") + what + ", found " + std::to_string(m_tokens.size() - 1) + (m_tokens.size() == 2 ? " value" : " values") +
+           " after '" + std::string(m_tokens[0]) + "'");
   }
   double real(size_t i) const {
     double x = 0;

@@ -912,6 +912,7 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
                 (dir / "x.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(nlohmann::json::parse(slurp(dir / "x.json")).contains("fabric"));
+  EXPECT_NE(r.output.find("saves the yarn weight dk: not used, the command line gives --yarn-radius"), std::string::npos) << r.output;
 }
 
 TEST(Job, LabelsFromTheFieldKnitATriangleMeshThroughToRelaxedYarn) {

@@ -97,7 +97,7 @@ TEST(Project, BadFilesNameTheLineAndRule) {
       {h + "stitch-mesh\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 0 2 k -1 0 1 2 3\nend\n", "line 14", "leaves no top edge"},
       {h + "stitch-mesh\nv 0 0 0\nf 0 1 k -1 0 0 0 9\nend\n", "line 11", "out of range"},
       {"skein 1\ninput-mesh\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 0 1 2\nend\n", "face 0", "zero area"},
-      {"skein 1\nset yarn.tolerance\nend\n", "line 2", "expected a key and a value"},
+      {"skein 1\nset yarn.tolerance\nend\n", "line 2", "expected a key and a value, found 1 value after 'set'"},
       {"skein 1\nset yarn/tolerance 0.1\nend\n", "line 2", "may hold only letters"},
       {"skein 1\nset yarn.halo 2\nset yarn.halo 3\nend\n", "line 3", "'yarn.halo' is set twice (first at line 2)"},
       {h + "stitch-mesh\ncolour A f0e6\nend\n", "line 10", "a colour is six hex digits (f0e6cf), found 'f0e6'"},
