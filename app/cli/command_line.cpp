@@ -61,7 +61,9 @@ int run_command_line(int argc, char** argv) {
   // --yarn and --gauge (issue 24): the yarn and the fabric as a knitter gives them (docs/yarn.md, "Yarn and gauge").
   const auto add_fabric = [](CLI::App* cmd, FabricChoice& f, const char* yarn_sets, bool gauge) {
     cmd->add_option("--yarn", f.yarn, std::string("yarn weight (lace, fingering, sport, dk, worsted, bulky, super-bulky, jumbo or the CYC number 0-7): ") + yarn_sets);
-    if (gauge) cmd->add_option("--gauge", f.gauge, "stockinette gauge, stitches (x rows) in 10 cm, e.g. 18x24 (rows: 1.3 x the stitches when left out): sets the stitch size");
+    if (!gauge) return;
+    cmd->add_option("--gauge", f.gauge, "stockinette gauge, stitches (x rows) in 10 cm, e.g. 18x24 (rows: 1.3 x the stitches when left out): sets the stitch size");
+    cmd->add_option("--needle", f.needle, "needle diameter [mm], with --yarn: the gauge of that yarn knitted on it (a stitch is one wrap of yarn around the needle); sets the stitch size");
   };
   const auto size_given = [](CLI::App* cmd) { return cmd->count("--stitch-size") + cmd->count("--stitch-height") > 0; };
 

@@ -241,8 +241,12 @@ double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicM
 
 Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given) {
   Fabric out;
-  if (choice.yarn.empty() && choice.gauge.empty()) return out;
+  if (choice.yarn.empty() && choice.gauge.empty() && choice.needle.empty()) return out;
   if (!choice.gauge.empty() && size_given) throw Error("", "--gauge", "sets the stitch size: leave out --stitch-size and --stitch-height");
+  if (!choice.needle.empty() && size_given) throw Error("", "--needle", "sets the stitch size: leave out --stitch-size and --stitch-height");
+  if (!choice.needle.empty() && !choice.gauge.empty()) throw Error("", "--needle", "sets the gauge: give --needle or --gauge, not both");
+  if (!choice.needle.empty() && choice.yarn.empty())
+    throw Error("", "--needle", "needs the yarn knitted on it: give --yarn WEIGHT too (or the gauge itself with --gauge)");
   if (!choice.yarn.empty() && radius_given) throw Error("", "--yarn", "sets the yarn radius: leave out --yarn-radius");
   out.report = json::object();
   std::optional<mesh::Gauge> gauge;
@@ -252,6 +256,16 @@ Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_g
     out.radius = weight.diameter() / 2;
     out.report["yarn"] = {{"weight", weight.name}, {"category", weight.category}, {"wraps_per_inch", weight.wraps_per_inch},
                           {"diameter_mm", weight.diameter()}, {"needle_mm", weight.needle_mm}};
+    if (!choice.needle.empty()) {
+      char* end = nullptr;
+      const double needle = std::strtod(choice.needle.c_str(), &end);
+      if (end == choice.needle.c_str() || *end != 0)
+        throw Error("", "--needle '" + choice.needle + "'", "expected the needle's diameter in millimetres (e.g. 4.5)");
+      gauge = mesh::needle_gauge(weight, needle);
+      out.report["needle_mm"] = needle;
+      out.report["needle_in_cyc_range"] = mesh::needle_in_range(weight, needle);
+      if (!mesh::needle_in_range(weight, needle)) spdlog::warn("--needle {} mm: {}", needle, mesh::needle_range_note(weight));
+    }
     if (!gauge && !size_given) gauge = mesh::standard_gauge(weight);
   }
   if (gauge) {

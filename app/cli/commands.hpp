@@ -122,10 +122,11 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
 
 /// What --yarn WEIGHT and --gauge S[xR] ask for (issue 24, part 1).
 struct FabricChoice {
-  std::string yarn, gauge;
+  std::string yarn, gauge, needle;
 };
-/// The stitch size and yarn radius a fabric choice sets: --gauge sets the size; --yarn the radius (half its
-/// diameter) and, without --gauge, the size of its standard gauge. `size_given` and `radius_given` say whether
+/// The stitch size and yarn radius a fabric choice sets: --gauge sets the size, and so does --needle with
+/// --yarn (mesh::needle_gauge); --yarn the radius (half its diameter) and, without --gauge or --needle, the
+/// size of its standard gauge. `size_given` and `radius_given` say whether
 /// --stitch-size/--stitch-height or --yarn-radius came too: each pair is refused together. `report` describes
 /// the fabric (yarn, gauge, Munden's loop length); null when nothing was asked.
 struct Fabric {

@@ -250,7 +250,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
   if (const json m = stage("relax_mesh"); !m.is_null()) job.relax_mesh = mesh_options(Keys(m, "relax_mesh", file));
   if (k.has("yarn")) {
     const Keys yarn(k.at("yarn"), "yarn", file);
-    yarn.only({"weight", "radius", "take_up"});
+    yarn.only({"weight", "radius", "take_up", "needle"});
     job.yarn_radius = yarn.number("radius", 0, 0, 1e3);
     if (yarn.has("weight")) {
       // A yarn weight class (issue 24): its radius, and its standard gauge where the job gives no stitch size.
@@ -264,7 +264,18 @@ Job parse_job(const std::string& text, const fs::path& file) {
       }
       job.yarn_radius = weight->diameter() / 2;
       job.yarn_weight = weight->name;
-      if (!k.has("stitch_size") && !k.has("gauge")) job.stitch_size = mesh::standard_gauge(*weight).stitch_size();
+      if (yarn.has("needle")) {
+        // The gauge of this yarn knitted on that needle (mesh::needle_gauge): the stitch size.
+        for (const char* size_key : {"stitch_size", "gauge"})
+          if (k.has(size_key)) yarn.fail(yarn.name("needle"), std::string("sets the stitch size: give ") + size_key + " or the needle, not both");
+        const double needle = yarn.number("needle", 0, 1e-3, 50);
+        job.stitch_size = mesh::needle_gauge(*weight, needle).stitch_size();
+        if (!mesh::needle_in_range(*weight, needle)) spdlog::warn("{}: {} {} mm: {}", file.string(), yarn.name("needle"), needle, mesh::needle_range_note(*weight));
+      } else if (!k.has("stitch_size") && !k.has("gauge")) {
+        job.stitch_size = mesh::standard_gauge(*weight).stitch_size();
+      }
+    } else if (yarn.has("needle")) {
+      yarn.fail(yarn.name("needle"), "needs the yarn knitted on it: give the yarn's weight too (or the gauge itself)");
     }
     if (yarn.has("take_up")) job.take_up = yarn.number("take_up", 1, 0.1, 10);
   }

@@ -254,6 +254,13 @@ void MainWindow::build_actions() {
       m_doc.set_stitch_size(gauge.stitch_size());
     });
   }, {}, true);
+  add(stitch, tr("Stitch size from &needle..."), "stitchNeedle", [this] {
+    const std::string weight = m_doc.yarn_settings().weight;
+    const double middle = weight.empty() ? 4 : mesh::find_yarn_weight(weight).needle_mm;
+    bool ok = false;
+    const double needle = QInputDialog::getDouble(this, tr("Needle"), tr("Needle diameter [mm] (the yarn: Relax > Yarn settings > Yarn weight)"), middle, 0.5, 50, 2, &ok);
+    if (ok) set_stitch_size_from_needle(needle);
+  }, {}, true);
   tool(stitch, tr("Tessellation &value"), "toolEdgeValue", Tool::EdgeValue, tr("Click an edge: set how many stitches (course) or stitch rows (wale) it gets"));
   tool(stitch, tr("&Mark wale edge"), "toolMarkWale", Tool::MarkWale, tr("Click a wale edge: increases and decreases of its faces go next to it"));
   add(stitch, tr("&Generate stitch mesh"), "generate", [this] {
@@ -659,6 +666,18 @@ void MainWindow::start_job(RelaxJob* job) {
 bool MainWindow::set_yarn_settings(const YarnSettings& settings) {
   return attempt([&] {
     m_doc.set_yarn_settings(settings);
+  });
+}
+
+bool MainWindow::set_stitch_size_from_needle(double needle_mm) {
+  return attempt([&] {
+    const std::string weight = m_doc.yarn_settings().weight;
+    if (weight.empty())
+      throw Error("a needle's gauge depends on the yarn knitted on it: choose a Yarn weight first (Relax > Yarn settings), or give the gauge (Stitch > Stitch size from gauge)");
+    const auto& yarn = mesh::find_yarn_weight(weight);
+    m_doc.set_stitch_size(mesh::needle_gauge(yarn, needle_mm, "needle").stitch_size());
+    if (!mesh::needle_in_range(yarn, needle_mm))
+      statusBar()->showMessage(tr("Needle %1 mm: %2").arg(needle_mm).arg(QString::fromStdString(mesh::needle_range_note(yarn))));
   });
 }
 

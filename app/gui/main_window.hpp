@@ -76,6 +76,9 @@ public:
   /// out of range.
   bool set_yarn_settings(const YarnSettings& settings);
   const YarnSettings& yarn_settings() const { return m_doc.yarn_settings(); }
+  /// Stitch > Stitch size from needle: the stitch size of the gauge that the Yarn settings' weight knits on a
+  /// needle `needle_mm` across (mesh::needle_gauge); false, with an error shown, without a weight.
+  bool set_stitch_size_from_needle(double needle_mm);
 
   bool relax_mesh();
   bool emit_yarn();

@@ -671,9 +671,24 @@ TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
   r = run_skein("stitch " + kModels + "/tube.obj --auto-label --gauge 10x12.5 -o " + (dir / "t.skein").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(slurp(dir / "t.skein").find("stitch-size 10 8\n"), std::string::npos) << slurp(dir / "t.skein").substr(0, 200);
+  // A needle with the yarn gives the gauge of that yarn knitted on it; outside the CYC's range, a warning.
+  r = run_skein("pattern " + patterns + "/stockinette.knit --yarn worsted --needle 4 -o " + (dir / "n.bcc").string() + " --report " + (dir / "n.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--needle 4 mm: outside the Craft Yarn Council's range for worsted yarn (4.5 to 5.5 mm)"), std::string::npos) << r.output;
+  const auto fabric = nlohmann::json::parse(slurp(dir / "n.json"))["fabric"];
+  const auto on_4mm = skein::mesh::needle_gauge(skein::mesh::find_yarn_weight("worsted"), 4);
+  EXPECT_GT(on_4mm.stitches, 18);  // a smaller needle than worsted's middle, more stitches
+  EXPECT_NEAR(fabric["gauge_per_10cm"]["stitches"].get<double>(), on_4mm.stitches, 1e-9) << fabric.dump();
+  EXPECT_NEAR(fabric["stitch_mm"][0].get<double>(), 100 / on_4mm.stitches, 1e-9) << fabric.dump();
+  EXPECT_EQ(fabric["needle_mm"].get<double>(), 4);
+  EXPECT_FALSE(fabric["needle_in_cyc_range"].get<bool>());
   // Refused, naming the option, with nothing written.
-  const std::array<std::pair<std::string, const char*>, 5> refusals = {
+  const std::array<std::pair<std::string, const char*>, 9> refusals = {
       {{"pattern " + patterns + "/stockinette.knit --gauge 18 --stitch-size 5", "leave out --stitch-size"},
+       {"pattern " + patterns + "/stockinette.knit --needle 4.5", "--needle: needs the yarn knitted on it: give --yarn WEIGHT too"},
+       {"pattern " + patterns + "/stockinette.knit --yarn dk --needle 4.5 --gauge 20", "--needle: sets the gauge: give --needle or --gauge, not both"},
+       {"stitch " + kModels + "/tube.obj --auto-label --yarn dk --needle 4.5mm", "--needle '4.5mm': expected the needle's diameter in millimetres"},
+       {"stitch " + kModels + "/tube.obj --auto-label --yarn dk --needle -1", "--needle -1: a needle's diameter must be a number of millimetres in (0, 50]"},
        {"pattern " + patterns + "/stockinette.knit --yarn dk --yarn-radius 1", "leave out --yarn-radius"},
        {"pattern " + patterns + "/stockinette.knit --yarn wool", "is not a yarn weight; one of lace, fingering"},
        {"pattern " + patterns + "/stockinette.knit --gauge 18x", "expected STITCHES or STITCHESxROWS"},
@@ -801,6 +816,12 @@ TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
   EXPECT_NE(msg.find("key 'yarn.weight': is not a yarn weight"), std::string::npos) << msg;
   msg = error_for("radius.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"weight": "dk", "radius": 1}})");
   EXPECT_NE(msg.find("key 'yarn.weight': sets the radius"), std::string::npos) << msg;
+  msg = error_for("needle.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"needle": 4.5}})");
+  EXPECT_NE(msg.find("key 'yarn.needle': needs the yarn knitted on it"), std::string::npos) << msg;
+  msg = error_for("needle-gauge.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "gauge": {"stitches": 18}, "yarn": {"weight": "dk", "needle": 4.5}})");
+  EXPECT_NE(msg.find("key 'yarn.needle': sets the stitch size: give gauge or the needle, not both"), std::string::npos) << msg;
+  msg = error_for("needle-size.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "yarn": {"weight": "dk", "needle": 0}})");
+  EXPECT_NE(msg.find("key 'yarn.needle': expected a number in [0.001, 50]"), std::string::npos) << msg;
   msg = error_for("max.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "max_stitches": 0})");
   EXPECT_NE(msg.find("key 'max_stitches'"), std::string::npos) << msg;
   msg = error_for("nomesh.json", R"({"name": "x"})");

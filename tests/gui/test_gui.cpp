@@ -29,6 +29,7 @@
 #include "woven_dialog.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "viewport.hpp"
 #include "yarn_settings.hpp"
@@ -573,6 +574,15 @@ private slots:
     QVERIFY(w.relax_yarn());
     QVERIFY(finished.wait(300000));
     QCOMPARE(doc.state().yarn->radius, full);
+    // Stitch > Stitch size from needle: the gauge dk knits on a 4 mm needle (mesh::needle_gauge); none without a weight.
+    QVERIFY(w.set_stitch_size_from_needle(4));
+    const auto on_4mm = mesh::needle_gauge(mesh::find_yarn_weight("dk"), 4).stitch_size();
+    QCOMPARE(doc.state().stitch_size.width, on_4mm.width);
+    QCOMPARE(doc.state().stitch_size.height, on_4mm.height);
+    settings.weight.clear();
+    QVERIFY(w.set_yarn_settings(settings));
+    QVERIFY(!w.set_stitch_size_from_needle(4));
+    QVERIFY2(w.last_error().contains("choose a Yarn weight first"), qPrintable(w.last_error()));
   }
 
   void yarn_settings_are_saved_with_the_project() {

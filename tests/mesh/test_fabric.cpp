@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "common/error.hpp"
@@ -62,4 +63,34 @@ TEST(Fabric, BadGaugesAreRefusedWithTheOption) {
   EXPECT_NE(error_of([] { mesh::parse_gauge("1e9"); }).find("--gauge '1e9': stitches in 10 cm must be a number in (0, 1000]"), std::string::npos);
   EXPECT_EQ(error_of([] { mesh::parse_gauge("nan"); }), "--gauge 'nan': " + format);
   EXPECT_EQ(mesh::parse_gauge("1e1x2.5e1").rows, 25);
+}
+
+TEST(Fabric, ANeedleGivesTheGaugeOfItsWrap) {
+  // The middle of a weight's needle range gives its standard gauge; a larger needle, fewer stitches.
+  for (const auto& w : mesh::yarn_weights()) {
+    const auto middle = mesh::needle_gauge(w, w.needle_mm);
+    EXPECT_NEAR(middle.stitches, w.stitches_per_10cm, 1e-9) << w.name;
+    EXPECT_NEAR(middle.rows, mesh::kLoopShapeFactor * w.stitches_per_10cm, 1e-9) << w.name;
+    EXPECT_GT(mesh::needle_gauge(w, w.needle_mm * 0.9).stitches, middle.stitches) << w.name;
+    EXPECT_TRUE(mesh::needle_in_range(w, w.needle_mm)) << w.name;
+  }
+  // The loop length grows with the wrap's centreline, pi (D + d): worsted (d 2.54 mm) on 7.54 - 2.54 x 2 mm.
+  const auto& worsted = mesh::find_yarn_weight("worsted");
+  const double d = worsted.diameter();
+  EXPECT_NEAR(mesh::needle_gauge(worsted, 2 * (5 + d) - d).loop_length(), 2 * mesh::standard_gauge(worsted).loop_length(), 1e-9);
+  // At the ends of the Craft Yarn Council's needle ranges, the ends of its gauge ranges within 7 %, but for
+  // super-bulky's largest needle (12.75 mm: 7.8 stitches, the CYC's 7); jumbo's 12.75 mm gives at most its 6.
+  for (const auto& w : mesh::yarn_weights()) {
+    const double at_smallest = mesh::needle_gauge(w, w.needle_min_mm).stitches;
+    if (w.name == "jumbo") {
+      EXPECT_LE(at_smallest, w.stitches_max);
+      continue;
+    }
+    EXPECT_NEAR(at_smallest / w.stitches_max, 1, 0.07) << w.name;
+    EXPECT_NEAR(mesh::needle_gauge(w, w.needle_max_mm).stitches / w.stitches_min, 1, w.name == "super-bulky" ? 0.12 : 0.07) << w.name;
+  }
+  EXPECT_FALSE(mesh::needle_in_range(worsted, 8));
+  EXPECT_TRUE(mesh::needle_in_range(mesh::find_yarn_weight("jumbo"), 25));
+  EXPECT_EQ(error_of([&] { mesh::needle_gauge(worsted, 0); }), "--needle 0: a needle's diameter must be a number of millimetres in (0, 50]");
+  EXPECT_EQ(error_of([&] { mesh::needle_gauge(worsted, 80, "needle"); }), "needle 80: a needle's diameter must be a number of millimetres in (0, 50]");
 }
