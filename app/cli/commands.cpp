@@ -15,6 +15,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/atomic_file.hpp"
+#include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "cuda/yarn_relaxer.hpp"
 #include "relax/yarn_io.hpp"
@@ -340,7 +341,8 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   }
   ProgressBar bar(run.progress);
   auto relaxer = cuda::make_yarn_relaxer(relax::parse_backend(run.backend), system, targets, options);
-  spdlog::info("relaxing with {} ({} CPU threads for the host side)", relax::to_string(options.method), omp_get_max_threads());
+  spdlog::info("relaxing with {} ({} CPU threads for the host side{}, wait policy {})", relax::to_string(options.method), omp_get_max_threads(),
+               following_free_cores() ? ", following the free cores" : "", wait_policy());
   const double log_tol = std::log(std::max(options.tolerance, 1e-12));
   std::vector<std::array<double, 3>> history;  // step, residual, energy
   const Stopwatch clock;
@@ -391,6 +393,8 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
             {"rollbacks", report.rollbacks}, {"contact_rebuilds", report.contact_rebuilds},
             {"yarn", yarn_json(yarn_out_curves)},
             {"history", {{"step", steps}, {"residual", residuals}, {"energy", energies}}}};
+  j["threads_follow_free_cores"] = following_free_cores();
+  j["wait_policy"] = wait_policy();
   j["stop_scale"] = options.clipped_scale ? "clipped" : "first";
   j["stop_rule"] = relax::to_string(options.stop_rule);
   j["force_residual"] = report.force_residual;

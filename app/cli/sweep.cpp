@@ -14,6 +14,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "common/cpu_threads.hpp"
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/input_file.hpp"
@@ -292,6 +293,7 @@ std::vector<std::string> case_command(const Sweep& sweep, const SweepCase& c, co
 std::vector<json> run_sweep_cases(const Sweep& sweep, int rank, int size) {
   std::vector<json> rows;
   install_interrupt_handlers();  // between cases too: the rest are marked not run
+  follow_free_cores(false);  // the sweep's threads per case, whatever else runs
   omp_set_num_threads(sweep.threads);
   for (const auto& c : sweep.cases) {
     if (c.index % size != rank) continue;

@@ -3,10 +3,13 @@
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 
+#include "common/cpu_threads.hpp"
 #include "main_window.hpp"
 #include "skein/config.hpp"
 
 int main(int argc, char** argv) {
+  skein::wait_passively(argv);  // issue 28: relaxations steady beside other work
+  skein::follow_free_cores(true);
   QSurfaceFormat format;
   format.setVersion(3, 3);
   format.setProfile(QSurfaceFormat::CoreProfile);

@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "commands.hpp"
+#include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "skein/config.hpp"
 #include "sweep.hpp"
@@ -43,6 +44,7 @@ std::vector<json> gather_rows(const std::vector<json>& mine, int rank, int size)
 }  // namespace
 
 int main(int argc, char** argv) {
+  skein::wait_passively(argv);  // issue 28: before MPI_Init, so that the program executed again is the one MPI meets
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

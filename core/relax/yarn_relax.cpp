@@ -11,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -328,8 +329,9 @@ public:
 
   YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step) override {
     const auto started = std::chrono::steady_clock::now();
-    auto last_checkpoint = started;
+    auto last_checkpoint = started, last_thread_count = started;
     const auto seconds_since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
+    refresh_thread_count();
     const double r = m_system.radius, limit = m_options.guard.max_move * r;
     JamWatch jam(m_options.jam_steps, m_options.jam_drop);
     bool jammed = false;
@@ -497,6 +499,10 @@ public:
       }
       if (cell) state.pull_through_events += period_step(*cell, state, limit / 1.25, delta);
       ++state.step;
+      if (seconds_since(last_thread_count) >= 0.5) {  // issue 28: the cores other work left free, now
+        refresh_thread_count();
+        last_thread_count = std::chrono::steady_clock::now();
+      }
       mark_changed(state, delta);
       if (m_active) m_active->moved(delta, m_pairs);
       const double moved = largest_sample_move(m_system, delta);
