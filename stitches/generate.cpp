@@ -219,6 +219,10 @@ StitchModel bind_off() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 2 || (argc == 2 && argv[1][0] == '-')) {
+    std::fprintf(stderr, "usage: skein-stitches [FOLDER]   (writes the stitch library, stitches/*.stitch, into FOLDER; default ./stitches)\n");
+    return argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") ? 0 : 2;
+  }
   const std::filesystem::path out = argc > 1 ? argv[1] : "stitches";
   std::vector<StitchModel> models;
   const std::string table1 = "(Yuksel 2012 §4.2, Table 1)";
@@ -243,6 +247,12 @@ int main(int argc, char** argv) {
     for (const char* c = inc; *c; ++c) loops.push_back({action_of(*c)});
     models.push_back(stitch(inc, std::string("increase: ") + inc + " worked into one loop below, left to right " + table1, 1, loops));
   }
+  // kfb: a knit into the loop's front leg and a crossed knit into its back leg (x, the legs crossed below the
+  // loop); seen from the front a right-side kfb is xk, a wrong-side pfb kx.
+  models.push_back(stitch("xk", "increase: a crossed knit, then a knit, worked into one loop below (kfb on a right-side row) " + table1, 1,
+                          {{Action::Knit, 0, true}, {Action::Knit}}));
+  models.push_back(stitch("kx", "increase: a knit, then a crossed knit, worked into one loop below (pfb on a wrong-side row) " + table1, 1,
+                          {{Action::Knit}, {Action::Knit, 0, true}}));
   for (const std::string order : {"12", "21", "123", "132", "213", "231", "312", "321"})
     for (const char c : {'k', 'p'}) {
       std::vector<int> stack;

@@ -53,10 +53,10 @@ std::string glyphs_of(const std::string& type, int cells) {
     const char lean = digits.front() == '1' ? '/' : digits.back() == '1' ? '\\' : '^';
     return std::string(1, lean) + (type.back() == 'p' ? "p" : "");
   }
-  // k p y, their twisted tops (k+1, p-1 ...) and increases into several (kp, kyk, ...): one letter a cell.
+  // k p y, their twisted tops (k+1, p-1 ...) and increases into several (kp, kyk, kfb's xk ...): one letter a cell.
   std::string base;
   for (char c : type)
-    if (c == 'k' || c == 'p' || c == 'y') base += c;
+    if (c == 'k' || c == 'p' || c == 'y' || c == 'x') base += c;
     else if (c != '+' && c != '-' && !std::isdigit(static_cast<unsigned char>(c))) return "";
   return static_cast<int>(base.size()) == cells ? base : "";
 }

@@ -62,7 +62,7 @@ Item make(Item::Kind kind, const std::string& written, int column, const std::st
 // The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
 const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
                               "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
-const char* const kNotModelled[] = {"kfb", "pfb", "m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
+const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
 
 int edit_distance(const std::string& a, const std::string& b) {
   std::vector<int> row(b.size() + 1);
@@ -149,12 +149,23 @@ public:
   /// the following rows.
   InstructionReader(const std::string& text, int offset, bool right_side, const std::string& source, int line,
                     const std::vector<PatternColour>& palette, int& colour)
-      : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line), m_palette(palette), m_colour(colour) {}
-
-  std::vector<Item> read() {
-    std::vector<Item> items = sequence(false);
-    return items;
+      : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line), m_palette(palette), m_colour(colour) {
+    // The stitch count books give after a row, "K1, kfb, k2. (5 sts)" or "... k2tog — 7 sts.": the stitches on the
+    // needle when the row is done, taken off here and checked once the row's width is known.
+    static const std::regex stated(R"((?:[(\[]\s*(\d+)\s*(?:sts?|stitches)(?:\s+(?:remain|on\s+needle))?\s*[)\]]|(?:-|–|—)+\s*(\d+)\s*(?:sts?|stitches))\s*\.?\s*$)",
+                                   std::regex::icase);
+    std::smatch m;
+    if (std::regex_search(m_text, m, stated)) {
+      m_stated = count_of(m[1].matched ? m[1].str() : m[2].str());
+      m_stated_column = m_offset + static_cast<int>(m.position(0)) + 1;
+      m_text.erase(static_cast<size_t>(m.position(0)));
+    }
   }
+
+  std::vector<Item> read() { return sequence(false); }
+  /// The stitch count written after the row, or 0; and its column.
+  int stated_count() const { return m_stated; }
+  int stated_column() const { return m_stated_column; }
 
 private:
   [[noreturn]] void fail(size_t at, const std::string& rule) const {
@@ -216,8 +227,10 @@ private:
   Item worked_into_one(const Item& group, size_t at) {
     std::string type, written;
     for (const auto& item : group.items) {
-      const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpy").find(item.type) != std::string::npos &&
-                          (item.written == "yo" || item.written.size() <= 2);
+      // k1, p1, yo, and k1 tbl (p1 tbl from the wrong side): one loop each.
+      static const std::regex one_loop(R"((?:k|p)1?|yo1?|(?:k|p)1?\s*tbl)", std::regex::icase);
+      const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpyx").find(item.type) != std::string::npos &&
+                          std::regex_match(item.written, one_loop);
       if (!single) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
       type += item.type;
       written += (written.empty() ? "" : ", ") + item.written;
@@ -225,7 +238,7 @@ private:
     if (m_rs) std::reverse(type.begin(), type.end());
     if (group.items.size() < 2 || group.items.size() > 3 || !find_stitch_type(type))
       fail(at, "'(" + written + ") in next st' has no stitch model: two or three stitches into one are read as skein's increase faces "
-               "(kp, pk, kpk, pkp, kyk, pyp, ...; seen from the front), and this one would be '" + type + "'");
+               "(kp, pk, kpk, pkp, kyk, pyp, xk, ...; seen from the front), and this one would be '" + type + "'");
     return make(Item::Stitch, "(" + written + ") in next st", static_cast<int>(at) + m_offset + 1, type);
   }
 
@@ -353,6 +366,13 @@ private:
         c.under = b;
         c.order = order;
         items.push_back(c);
+      } else if (match(R"((k|p)fb)", m)) {
+        // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's
+        // increase with an x loop). Seen from the front a right-side kfb is xk and a wrong-side pfb kx; a crossed
+        // purl (kfb from the wrong side, pfb from the right) has no model.
+        m_pos += static_cast<size_t>(m.length(0));
+        const bool knit = m[1].str() == "k";
+        items.push_back(stitch(at, m.str(0), knit ? "xk" : "", knit ? "" : "kx"));
       } else if (const Decrease* d = decrease(m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, d->written, d->right_side, d->wrong_side));
@@ -379,7 +399,7 @@ private:
         const std::string word = m_text.substr(m_pos, end - m_pos);
         if (std::find(std::begin(kNotModelled), std::end(kNotModelled), word) != std::end(kNotModelled))
           fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet" +
-                       std::string(word == "kfb" || word == "pfb" ? "; the nearest increase into one stitch is '(k1, p1) in next st'" : ""));
+                       std::string(word.rfind("m1", 0) == 0 ? "; the nearest increases are 'kfb' and a yarn-over" : ""));
         // "k2 DC" in a pattern in colours: a word after a stitch reads as its colour.
         const bool after_stitch = !m_palette.empty() && !items.empty() && at > 0 && std::isspace(static_cast<unsigned char>(m_text[at - 1])) &&
                                   word.size() <= 3;
@@ -392,7 +412,8 @@ private:
     }
   }
 
-  const std::string& m_text;
+  std::string m_text;
+  int m_stated = 0, m_stated_column = 0;
   int m_offset;
   bool m_rs;
   std::string m_source;
@@ -440,6 +461,7 @@ struct WrittenRow {
   bool starred = false;  ///< written with a `*` repeat; without one (and not a fill) the row is as wide as written
   int partial_fill = 0;  ///< the column of a `k to end` or `k to last N sts` beside other stitches (shaped pieces only), or 0
   int line = 0;
+  int stated = 0, stated_column = 0;  ///< the stitch count written after the row ("(5 sts)") and its column, or 0
   int edges() const { return loops_taken(before) + loops_taken(after); }
   /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
   int left_edge() const { return loops_taken(right_side ? after : before); }
@@ -655,6 +677,8 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   const auto work = [&](const Instructions& w) {
     InstructionReader reader(w.body, w.offset, w.right_side, source, w.line, p.palette, colour);
     rows.push_back(split_row(reader.read(), w.right_side, w.line, source));
+    rows.back().stated = reader.stated_count();
+    rows.back().stated_column = reader.stated_column();
     said.push_back(w);
   };
   // Rows a..b once more as the next rows: "Rep Row 1" on a wrong-side row is worked from the wrong side.
@@ -664,6 +688,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       const int number = static_cast<int>(rows.size()) + 1;
       if (!round && (number - k) % 2 != 0) w.right_side = !w.right_side;
       work(w);
+      rows.back().stated = 0;  // a row's count is said of the row where it is written, not of its repeats
     }
   };
   // "Row 2 and all WS rows: Purl.": the instructions of every wrong-side row the text leaves out.
@@ -782,6 +807,9 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       const int taken = loops_taken(resolved[r].repeat), made = loops_made(resolved[r].repeat);
       stacks = stacks && (r == 0 || taken == below);
       below = made;
+      if (stacks && resolved[r].stated > 0 && resolved[r].stated != made)
+        throw Error(source, "line " + std::to_string(resolved[r].line) + ", column " + std::to_string(resolved[r].stated_column),
+                    "the row makes " + std::to_string(made) + " stitches, but the count written after it says " + std::to_string(resolved[r].stated));
     }
     if (stacks) return shaped_piece(std::move(p), resolved, description, source);
   }

@@ -146,7 +146,7 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
             "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'p', 'yo'? (patterns/FORMAT.md lists what is read)");
-  EXPECT_EQ(error("Row 1: k2, kfb, k2.\n"), "p.txt: line 1, column 12: 'kfb' is a knitting abbreviation skein has no stitch model for yet; the nearest increase into one stitch is '(k1, p1) in next st'");
+  EXPECT_EQ(error("Row 1: k2, m1l, k2.\n"), "p.txt: line 1, column 12: 'm1l' is a knitting abbreviation skein has no stitch model for yet; the nearest increases are 'kfb' and a yarn-over");
   EXPECT_EQ(error("Row 1: knit.\nRow 3: purl.\n"), "p.txt: line 2: row 3 comes where row 2 was expected (rows are numbered from 1, in order)");
   EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
   EXPECT_EQ(error("Row 1: [k1, p1].\n"), "p.txt: line 1, column 17: expected how many times the group is worked after it ('3 times' or 'x3')");
@@ -363,10 +363,19 @@ TEST(WrittenPattern, StitchesWorkedIntoOneAreIncreaseFaces) {
   EXPECT_EQ(rows_of("Sssk, (k1, yo, k1) in same st."), "kyk d321k / k k k k / ");
   EXPECT_EQ(rows_of("Knit.", "P2tog, (k1, p1) in next st."), "k k k / d12k pk / ");  // wrong side: worked left to right, k1 a purl from the front
   EXPECT_EQ(rows_of("K4.", "(P1, k1, p1) in next st, p3tog."), "k k k k / kpk d123k / ");
+  // kfb: a knit into the front leg, then a crossed knit into the back leg (right to left: xk from the front);
+  // pfb on a wrong-side row is the same seen from the front, worked left to right (kx). Written as a group too.
+  EXPECT_EQ(rows_of("K2tog, kfb."), "xk d12k / k k k / ");
+  EXPECT_EQ(rows_of("K2tog, (k1, k1 tbl) in next st."), "xk d12k / k k k / ");
+  EXPECT_EQ(rows_of("Knit.", "P2tog, pfb."), "k k k / d12k kx / ");
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): K2tog, pfb.\nRow 2: Purl.\n", "e.txt"); }),
+            "e.txt: line 1, column 20: 'pfb' on a right-side row has no stitch model yet");
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2: P2tog, kfb.\n", "e.txt"); }),
+            "e.txt: line 2, column 15: 'kfb' on a wrong-side row has no stitch model yet (work it from the right side, or write the row from the right side)");
   // What has no model is refused, naming the place and the face it would be.
   EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): K3tog, (k1, p1, k1, p1) in next st.\nRow 2: Purl.\n", "e.txt"); }),
             "e.txt: line 1, column 20: '(k1, p1, k1, p1) in next st' has no stitch model: two or three stitches into one are read as skein's "
-            "increase faces (kp, pk, kpk, pkp, kyk, pyp, ...; seen from the front), and this one would be 'pkpk'");
+            "increase faces (kp, pk, kpk, pkp, kyk, pyp, xk, ...; seen from the front), and this one would be 'pkpk'");
   EXPECT_NE(error_of([] { mesh::parse_pattern("Row 1 (RS): K1, (k1, k2tog) in next st.\nRow 2: Purl.\n", "e.txt"); })
                 .find("column 22: 'k2tog': a group worked into one stitch holds single knits, purls and yarn-overs"),
             std::string::npos);
@@ -480,6 +489,24 @@ TEST(PatternColours, WrittenInstructionsSayTheColourAsKnittersDo) {
   ASSERT_EQ(peerie.height(), 7);
   EXPECT_EQ(peerie.colours[3], (std::vector<int>{1, 0, 0, 0, 1, 0}));
   EXPECT_EQ(peerie.colours[0], (std::vector<int>(6, 0)));
+}
+
+// kfb on the right-side rows of a piece, with the stitch counts books write after a row ("(5 sts)", "— 5 sts").
+TEST(WrittenPattern, AKfbWedgeWidensAndItsStitchCountsAreChecked) {
+  const auto p = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/stockinette-kfb-wedge.txt");
+  ASSERT_TRUE(p.whole);
+  ASSERT_EQ(p.height(), 8);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "xk", "k"}));  // "K1, kfb, k2" worked right to left
+  EXPECT_EQ(p.rows[7].size(), 8u);
+  const auto piece = mesh::pattern_stitch_mesh(p, 1, 1);
+  EXPECT_TRUE(mesh::validate(piece).valid());
+  EXPECT_FALSE(mesh::emit_yarn(piece, mesh::StitchLibrary::bundled(), {}).points.empty());
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "w.txt"); }); };
+  EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K1, kfb, k to end \u2014 5 sts.\nRow 2: Purl. (5 sts)\n", "w.txt").rows[1].size(), 5u);
+  EXPECT_EQ(error("Cast on 4 sts.\nRow 1 (RS): K1, kfb, k2. (6 sts)\nRow 2: Purl.\n"),
+            "w.txt: line 2, column 26: the row makes 5 stitches, but the count written after it says 6");
+  // Repeated rows do not repeat the count of the row they copy.
+  EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K1, kfb, k to end. (5 sts)\nRow 2: Purl.\nRep Rows 1 and 2 once more.\n", "w.txt").rows[3].size(), 6u);
 }
 
 TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
