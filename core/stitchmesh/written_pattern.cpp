@@ -44,6 +44,7 @@ struct Item {
   std::string written;     ///< the abbreviation as written, for errors
   int column = 0;          ///< 1-based, in the line
   int over = 0, under = 0, order = 1;  ///< Cable, as seen from the front (PatternCable)
+  bool purl_behind = false; ///< Cable: the stitches that cross behind are purled (T3F, 2/1 LPC: knits travelling over purls)
   int times = 1;           ///< Group
   int colour = -1;         ///< Stitch, Cable, Fill: index into the pattern's palette (issue 26), -1 for none said
   int leave = 0;           ///< Fill: "k to last N sts" leaves N
@@ -62,7 +63,7 @@ Item make(Item::Kind kind, const std::string& written, int column, const std::st
 // The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
 const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
                               "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
-const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "t3f", "t3b", "t4f", "t4b", "psso", "ktbl2tog", "dpk"};
+const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "psso", "ktbl2tog", "dpk"};
 
 int edit_distance(const std::string& a, const std::string& b) {
   std::vector<int> row(b.size() + 1);
@@ -366,6 +367,33 @@ private:
         c.under = b;
         c.order = order;
         items.push_back(c);
+      } else if (match(R"(t(\d)(f|b))", m) || match(R"((\d)/(\d)\s*(lpc|rpc|lpt|rpt))", m)) {
+        // Travelling stitches (the Craft Yarn Council's T3F: sl 2 to cn, hold in front, p1, k2 from cn): knits cross
+        // over purls, the knits in front. Tn: n - 1 knits over one purl (T4: two over two); A/B LPC or RPC: A knits over
+        // B purls, travelling left (F) or right (B) in front.
+        m_pos += static_cast<size_t>(m.length(0));
+        if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
+        int knits = 0, purls = 0;
+        bool left = false;
+        if (m.str(0)[0] == 't') {
+          const int n = count_of(m[1].str());
+          if (n < 2 || n > 4) fail(at, "'" + m.str(0) + "': travelling cables of 2, 3 or 4 stitches (T2: 1 over 1, T3: 2 over 1, T4: 2 over 2) have models");
+          knits = n == 4 ? 2 : n - 1;
+          purls = n - knits;
+          left = m[2].str() == "f";
+        } else {
+          knits = count_of(m[1].str());
+          purls = count_of(m[2].str());
+          left = m[3].str()[0] == 'l';
+        }
+        if (knits < 1 || knits > 3 || purls < 1 || purls > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
+        // As CnF and CnB: the loops on the left (a) cross right, in front (order 1: the knits travel right) or behind.
+        Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);
+        c.over = left ? purls : knits;
+        c.under = left ? knits : purls;
+        c.order = left ? -1 : 1;
+        c.purl_behind = true;
+        items.push_back(c);
       } else if (match(R"((k|p)fb)", m)) {
         // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's
         // increase with an x loop). Seen from the front a right-side kfb is xk and a wrong-side pfb kx; a crossed
@@ -631,7 +659,11 @@ void append_row(Pattern& p, const std::vector<Item>& items) {
       int made = 0;
       for (const auto& t : types) made += find_stitch_type(t)->top;
       p.cables.push_back({static_cast<int>(p.rows.size()), made, item.over, item.under, item.order});
-      types.insert(types.end(), item.over + item.under, "k");
+      // Crossed, the `under` loops from the right lie on the left; those that crossed behind are purled when the
+      // cable says so (travelling stitches).
+      const bool left_behind = item.order < 0;  // the `over` loops from the left crossed behind: now on the right
+      types.insert(types.end(), item.under, item.purl_behind && !left_behind ? "p" : "k");
+      types.insert(types.end(), item.over, item.purl_behind && left_behind ? "p" : "k");
       colours.insert(colours.end(), item.over + item.under, std::max(item.colour, 0));
     } else {
       types.push_back(item.type);

@@ -104,6 +104,21 @@ TEST(WrittenPattern, WrongSideRowsAreReadLeftToRightAndSeenFromTheFront) {
   p = mesh::parse_pattern("Rnd 1: C4F.\nRnd 2: k4.\n", "c.txt");
   ASSERT_EQ(p.cables.size(), 1u);
   EXPECT_EQ(p.cables[0], (mesh::PatternCable{0, 0, 2, 2, -1}));
+  // Travelling stitches: knits cross over purls, the knits in front. T3B's two knits travel right (p k k from the
+  // front), T3F's left (k k p); A/B RPC and LPC name the same crossings, T4 is two over two, T2 one over one.
+  p = mesh::parse_pattern("Row 1 (RS): P1, T3B.\nRow 2: K1, p2, k1.\n", "t.txt");
+  ASSERT_EQ(p.cables.size(), 1u);
+  EXPECT_EQ(p.cables[0], (mesh::PatternCable{0, 0, 2, 1, 1}));  // worked right to left: the cable left of the p1
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"p", "k", "k", "p"}));
+  p = mesh::parse_pattern("Row 1 (RS): P1, T3F.\nRow 2: P2, k2.\n", "t.txt");
+  EXPECT_EQ(p.cables[0], (mesh::PatternCable{0, 0, 1, 2, -1}));
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "k", "p", "p"}));
+  EXPECT_EQ(mesh::parse_pattern("Rnd 1: p1, 2/1 LPC.\nRnd 2: p1, k2, p1.\n", "t.txt").cables, mesh::parse_pattern("Rnd 1: p1, T3F.\nRnd 2: p1, k2, p1.\n", "t.txt").cables);
+  EXPECT_EQ(mesh::parse_pattern("Rnd 1: T4B.\nRnd 2: p2, k2.\n", "t.txt").rows[0], (std::vector<std::string>{"p", "p", "k", "k"}));
+  EXPECT_EQ(mesh::parse_pattern("Rnd 1: 2/2 RPC.\nRnd 2: p2, k2.\n", "t.txt").cables[0], (mesh::PatternCable{0, 0, 2, 2, 1}));
+  EXPECT_EQ(mesh::parse_pattern("Rnd 1: T2F, p1.\nRnd 2: p1, k1, p1.\n", "t.txt").rows[0], (std::vector<std::string>{"p", "k", "p"}));
+  EXPECT_EQ(error_of([] { mesh::parse_pattern("Rnd 1: T5F.\nRnd 2: knit.\n", "t.txt"); }),
+            "t.txt: line 1, column 8: 't5f': travelling cables of 2, 3 or 4 stitches (T2: 1 over 1, T3: 2 over 1, T4: 2 over 2) have models");
   // A yarn-over on either side of its decrease; "Rep Rows 1 and 2" adds no height to the repeat.
   p = mesh::parse_pattern("Row 1 (RS): *K1, yo, k2tog, k1; rep from * to end.\nRow 2: Purl.\n", "e.txt");
   EXPECT_EQ(p.rows[0], (std::vector<std::string>{"k", "2u", "k"}));
