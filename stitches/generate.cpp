@@ -242,17 +242,23 @@ int main(int argc, char** argv) {
                           {{Action::Knit, 0, true}}));
   models.push_back(slip("s", "slip: the loop below passes to the next row unworked, the yarn floats behind it", -1));
   models.push_back(slip("sk", "slip with the yarn in front: the loop below passes unworked, the yarn floats in front", 1));
+  models.push_back(stitch("q", "crossed purl: a purl whose legs cross below the loop they pass through (purl through the back loop), "
+                          "crossed as x is", 1, {{Action::Purl, 0, true}}));
   for (const char* inc : {"kp", "pk", "ky", "yk", "py", "yp", "kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}) {
     std::vector<Loop> loops;
     for (const char* c = inc; *c; ++c) loops.push_back({action_of(*c)});
     models.push_back(stitch(inc, std::string("increase: ") + inc + " worked into one loop below, left to right " + table1, 1, loops));
   }
-  // kfb: a knit into the loop's front leg and a crossed knit into its back leg (x, the legs crossed below the
-  // loop); seen from the front a right-side kfb is xk, a wrong-side pfb kx.
-  models.push_back(stitch("xk", "increase: a crossed knit, then a knit, worked into one loop below (kfb on a right-side row) " + table1, 1,
-                          {{Action::Knit, 0, true}, {Action::Knit}}));
-  models.push_back(stitch("kx", "increase: a knit, then a crossed knit, worked into one loop below (pfb on a wrong-side row) " + table1, 1,
-                          {{Action::Knit}, {Action::Knit, 0, true}}));
+  // kfb and pfb: into the loop's front leg, then into its back leg, the second loop crossed (x or q). Seen from the
+  // front, worked right to left on a right-side row and left to right on a wrong-side one: kfb is xk (RS) or pq (WS),
+  // pfb qp (RS) or kx (WS).
+  const std::vector<std::pair<const char*, const char*>> front_and_back = {
+      {"xk", "kfb on a right-side row"}, {"kx", "pfb on a wrong-side row"}, {"qp", "pfb on a right-side row"}, {"pq", "kfb on a wrong-side row"}};
+  for (const auto& [inc, written] : front_and_back) {
+    std::vector<Loop> loops;
+    for (const char* c = inc; *c; ++c) loops.push_back({action_of(*c == 'x' ? 'k' : *c == 'q' ? 'p' : *c), 0, *c == 'x' || *c == 'q'});
+    models.push_back(stitch(inc, std::string("increase: ") + inc + " worked into one loop below, left to right, x and q crossed (" + written + ") " + table1, 1, loops));
+  }
   for (const std::string order : {"12", "21", "123", "132", "213", "231", "312", "321"})
     for (const char c : {'k', 'p'}) {
       std::vector<int> stack;

@@ -14,7 +14,7 @@ namespace {
 const Eigen::Vector3f kInk(0.08f, 0.08f, 0.1f), kGrid(0.6f, 0.6f, 0.62f), kPaper(1, 1, 1), kNoSymbol(0.78f, 0.78f, 0.8f),
     kCable(0.1f, 0.35f, 0.6f), kNumber(0.3f, 0.3f, 0.55f);
 
-/// The symbol of one stitch in the cell whose lower left corner is (x, y): `glyph` is k p y / \ ^ v x.
+/// The symbol of one stitch in the cell whose lower left corner is (x, y): `glyph` is k p y / \ ^ v x q.
 void draw_glyph(Sketch& s, char glyph, double x, double y) {
   const double w = 0.09;
   const Eigen::Vector2d c(x + 0.5, y + 0.5);
@@ -33,8 +33,10 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
       s.stroke({x + 0.5, y + 0.2}, {x + 0.75, y + 0.8}, w, kInk);
       break;
     case 'x':
+    case 'q':  // a crossed purl: the cross and, below it, the purl's dot
       s.stroke({x + 0.3, y + 0.3}, {x + 0.7, y + 0.7}, w, kInk);
       s.stroke({x + 0.3, y + 0.7}, {x + 0.7, y + 0.3}, w, kInk);
+      if (glyph == 'q') s.dot({x + 0.5, y + 0.16}, 0.08, kInk);
       break;
     default: s.box(x + 0.06, y + 0.06, x + 0.94, y + 0.94, kNoSymbol, 0.02); break;
   }
@@ -46,17 +48,17 @@ std::string glyphs_of(const std::string& type, int cells) {
   if (type == "2u") return "/y";    // k2tog, then a yarn-over
   if (type == "y3y") return "y^y";  // a yarn-over, sk2p, a yarn-over
   if (type == "s" || type == "sk") return "v";
-  if (type == "x") return "x";
+  if (type == "x" || type == "q") return type;
   if (type.size() >= 4 && type[0] == 'd' && std::isdigit(static_cast<unsigned char>(type[1]))) {
     // Decreases: the loop stacked nearest the new one says the lean (d12k: k2tog, /; d21k: ssk, \).
     const std::string digits = type.substr(1, type.size() - 2);
     const char lean = digits.front() == '1' ? '/' : digits.back() == '1' ? '\\' : '^';
     return std::string(1, lean) + (type.back() == 'p' ? "p" : "");
   }
-  // k p y, their twisted tops (k+1, p-1 ...) and increases into several (kp, kyk, kfb's xk ...): one letter a cell.
+  // k p y, their twisted tops (k+1, p-1 ...) and increases into several (kp, kyk, kfb's xk and pq ...): one letter a cell.
   std::string base;
   for (char c : type)
-    if (c == 'k' || c == 'p' || c == 'y' || c == 'x') base += c;
+    if (c == 'k' || c == 'p' || c == 'y' || c == 'x' || c == 'q') base += c;
     else if (c != '+' && c != '-' && !std::isdigit(static_cast<unsigned char>(c))) return "";
   return static_cast<int>(base.size()) == cells ? base : "";
 }

@@ -10,8 +10,8 @@ const std::vector<StitchType>& stitch_types() {
     const auto add = [&](std::initializer_list<const char*> names, int bottom, int top) {
       for (const char* n : names) t.push_back({n, bottom, top});
     };
-    add({"k", "p", "y", "k+1", "k-1", "p+1", "p-1", "y+1", "y-1", "x", "s", "sk"}, 1, 1);
-    add({"kp", "pk", "ky", "yk", "py", "yp", "xk", "kx"}, 1, 2);
+    add({"k", "p", "y", "k+1", "k-1", "p+1", "p-1", "y+1", "y-1", "x", "q", "s", "sk"}, 1, 1);
+    add({"kp", "pk", "ky", "yk", "py", "yp", "xk", "kx", "qp", "pq"}, 1, 2);
     add({"kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}, 1, 3);
     add({"d12k", "d21k", "d12p", "d21p"}, 2, 1);
     add({"d123k", "d132k", "d213k", "d231k", "d312k", "d321k", "d123p", "d132p", "d213p", "d231p", "d312p", "d321p"}, 3, 1);

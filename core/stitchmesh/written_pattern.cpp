@@ -228,9 +228,9 @@ private:
   Item worked_into_one(const Item& group, size_t at) {
     std::string type, written;
     for (const auto& item : group.items) {
-      // k1, p1, yo, and k1 tbl (p1 tbl from the wrong side): one loop each.
+      // k1, p1, yo, k1 tbl and p1 tbl: one loop each.
       static const std::regex one_loop(R"((?:k|p)1?|yo1?|(?:k|p)1?\s*tbl)", std::regex::icase);
-      const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpyx").find(item.type) != std::string::npos &&
+      const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpyxq").find(item.type) != std::string::npos &&
                           std::regex_match(item.written, one_loop);
       if (!single) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
       type += item.type;
@@ -395,12 +395,12 @@ private:
         c.purl_behind = true;
         items.push_back(c);
       } else if (match(R"((k|p)fb)", m)) {
-        // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's
-        // increase with an x loop). Seen from the front a right-side kfb is xk and a wrong-side pfb kx; a crossed
-        // purl (kfb from the wrong side, pfb from the right) has no model.
+        // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's increase
+        // with an x or q loop), seen from the front: a right-side row worked right to left, a wrong-side row left to
+        // right with its knits purls.
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
-        items.push_back(stitch(at, m.str(0), knit ? "xk" : "", knit ? "" : "kx"));
+        items.push_back(stitch(at, m.str(0), knit ? "xk" : "qp", knit ? "pq" : "kx"));
       } else if (const Decrease* d = decrease(m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, d->written, d->right_side, d->wrong_side));
@@ -413,7 +413,8 @@ private:
       } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
-        add(items, stitch(at, m.str(0), knit ? "x" : "", knit ? "" : "x"), m[2].length() ? count_of(m[2].str()) : 1);
+        // Through the back loop, knit or purl, the loop crosses the same way: a crossed knit (x) or purl (q) from the front.
+        add(items, stitch(at, m.str(0), knit ? "x" : "q", knit ? "q" : "x"), m[2].length() ? count_of(m[2].str()) : 1);
       } else if (match(R"((k|p)(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";

@@ -379,14 +379,16 @@ TEST(WrittenPattern, StitchesWorkedIntoOneAreIncreaseFaces) {
   EXPECT_EQ(rows_of("Knit.", "P2tog, (k1, p1) in next st."), "k k k / d12k pk / ");  // wrong side: worked left to right, k1 a purl from the front
   EXPECT_EQ(rows_of("K4.", "(P1, k1, p1) in next st, p3tog."), "k k k k / kpk d123k / ");
   // kfb: a knit into the front leg, then a crossed knit into the back leg (right to left: xk from the front);
-  // pfb on a wrong-side row is the same seen from the front, worked left to right (kx). Written as a group too.
+  // pfb on a wrong-side row is the same seen from the front, worked left to right (kx). From the other side they
+  // are a purl beside a crossed purl (q). Written as a group too.
   EXPECT_EQ(rows_of("K2tog, kfb."), "xk d12k / k k k / ");
   EXPECT_EQ(rows_of("K2tog, (k1, k1 tbl) in next st."), "xk d12k / k k k / ");
   EXPECT_EQ(rows_of("Knit.", "P2tog, pfb."), "k k k / d12k kx / ");
-  EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): K2tog, pfb.\nRow 2: Purl.\n", "e.txt"); }),
-            "e.txt: line 1, column 20: 'pfb' on a right-side row has no stitch model yet");
-  EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2: P2tog, kfb.\n", "e.txt"); }),
-            "e.txt: line 2, column 15: 'kfb' on a wrong-side row has no stitch model yet (work it from the right side, or write the row from the right side)");
+  EXPECT_EQ(rows_of("K2tog, pfb."), "qp d12k / k k k / ");
+  EXPECT_EQ(rows_of("Knit.", "P2tog, kfb."), "k k k / d12k pq / ");
+  EXPECT_EQ(rows_of("K2tog, (p1, p1 tbl) in next st."), "qp d12k / k k k / ");
+  // Through the back loop from either side: a crossed knit (x) or a crossed purl (q) from the front.
+  EXPECT_EQ(rows_of("K1, p1 tbl, k1.", "P1, k1 tbl, p1."), "k q k / ");  // the two rows alike: one row repeats
   // What has no model is refused, naming the place and the face it would be.
   EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): K3tog, (k1, p1, k1, p1) in next st.\nRow 2: Purl.\n", "e.txt"); }),
             "e.txt: line 1, column 20: '(k1, p1, k1, p1) in next st' has no stitch model: two or three stitches into one are read as skein's "
