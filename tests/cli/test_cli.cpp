@@ -748,10 +748,10 @@ TEST(Cli, PatternTilesEmitsAndRelaxes) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "twill.bcc"));
   // A broken pattern: the error names the file, line and column, and nothing is written.
-  const auto bad = dir.write("bad.knit", "format knit\nk q\n");
+  const auto bad = dir.write("bad.knit", "format knit\nk w\n");
   r = run_skein("pattern " + bad.string() + " -o " + (dir / "bad.bcc").string());
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.output.find("line 2, column 3: unknown stitch 'q'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("line 2, column 3: unknown stitch 'w'"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.bcc"));
   r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "x.bcc").string() + " --tile 3");
   EXPECT_EQ(r.status, 2);

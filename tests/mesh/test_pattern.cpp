@@ -55,7 +55,7 @@ TEST(Pattern, WovenMatrixWithOrWithoutSpaces) {
 
 TEST(Pattern, ErrorsNameTheLineColumnAndRule) {
   EXPECT_NE(error_in("format knit\nk w p\n").find("line 2, column 3: unknown stitch 'w'; the stitch types are: k p"), std::string::npos)
-      << error_in("format knit\nk q p\n");
+      << error_in("format knit\nk w p\n");
   EXPECT_NE(error_in("").find("is empty"), std::string::npos);
   EXPECT_NE(error_in("# only a comment\n").find("is empty"), std::string::npos);
   EXPECT_NE(error_in("format knit\n").find("holds no rows"), std::string::npos);
