@@ -117,8 +117,8 @@ int main(int argc, char** argv) try {
               "largest_all_r,energy_warm,energy_full\n");
   std::printf("%zu,%ld,%zu,%.3f,%.3f,%ld,%d,%d,%d,%d,%ld,%ld,%s,%.3f,%ld,%s,%.2f,%.4f,%.4f,%.4f,%.4f,%.6g,%.6g\n", after.faces.size(), n, chosen.size(),
               previous.seconds, warm_seconds, report.steps, report.rounds, report.rings, report.relaxed_points, report.held_points,
-              report.splice_crossings, report.pull_through_events, report.stopped_by.c_str(), full.seconds, full.report.steps,
-              full.report.stopped_by.c_str(), full.seconds / warm_seconds, n_out ? std::sqrt(sum_out / n_out) : 0.0, largest_out,
+              report.splice_crossings, report.pull_through_events, relax::to_string(report.stopped_by).c_str(), full.seconds, full.report.steps,
+              relax::to_string(full.report.stopped_by).c_str(), full.seconds / warm_seconds, n_out ? std::sqrt(sum_out / n_out) : 0.0, largest_out,
               std::sqrt(sum_all / n), largest_all, e_warm, e_full);
   return 0;
 } catch (const skein::Error& e) {

@@ -67,7 +67,7 @@ public:
         ++state.rollbacks;
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state with half the step", step);
         if (++failures > 20) {
-          report.stopped_by = "diverged";
+          report.stopped_by = relax::StopReason::Diverged;
           break;
         }
         contacts = rebuild(state);
@@ -75,23 +75,23 @@ public:
       }
       if (status.halt == Halt::Converged) {
         report.converged = true;
-        report.stopped_by = "converged";
+        report.stopped_by = relax::StopReason::Converged;
         break;
       }
       if (status.halt == Halt::StopAt && out_of_time) {
-        report.stopped_by = "time cap";
+        report.stopped_by = relax::StopReason::TimeCap;
         break;
       }
       if (status.halt == Halt::StopAt && interrupted) {
-        report.stopped_by = "interrupted";
+        report.stopped_by = relax::StopReason::Interrupted;
         break;
       }
       if (status.halt == Halt::StopAt && step >= m_options.max_steps) {
-        report.stopped_by = "step cap";
+        report.stopped_by = relax::StopReason::StepCap;
         break;
       }
       if (jammed) {
-        report.stopped_by = "jammed";
+        report.stopped_by = relax::StopReason::Jammed;
         spdlog::warn("step {}: {}", step, jam.describe());
         break;
       }
@@ -105,7 +105,7 @@ public:
         contacts = rebuild(state);
       }
     }
-    if (!m_options.checkpoint.empty() && report.stopped_by != "diverged") checkpoint(state, fingerprint);
+    if (!m_options.checkpoint.empty() && report.stopped_by != relax::StopReason::Diverged) checkpoint(state, fingerprint);
     const long pull_through = state.pull_through_events, rollbacks = state.rollbacks, rebuilds = state.contact_rebuilds;
     m_device.get_state(state);
     state.pull_through_events = pull_through;

@@ -893,15 +893,15 @@ int run_command_line(int argc, char** argv) {
         relax::LocalRelaxReport local;
         const auto points = relax::relax_locally(*project.stitch, yarn, splice, ry_options, ry_local, ry_take_up,
                                                  parse_take_up("--take-up-stitch", ry_take_up_stitch), local);
-        if (local.stopped_by != "unsafe splice") {
+        if (local.stopped_by != relax::StopReason::UnsafeSplice) {
           const auto out = relax::with_points(yarn, points);
           write_yarn(out, ry_out);
           write_ids(out);
-          spdlog::info("{} after {} steps in {} rounds ({:.2f} s): {} stitches changed, {} rings, {} pull-through events; wrote {}", local.stopped_by,
+          spdlog::info("{} after {} steps in {} rounds ({:.2f} s): {} stitches changed, {} rings, {} pull-through events; wrote {}", relax::to_string(local.stopped_by),
                        local.steps, local.rounds, local.wall_seconds, local.changed_stitches, local.rings,
                        local.pull_through_events < 0 ? std::string("unaudited") : std::to_string(local.pull_through_events), ry_out);
           if (!ry_report.empty())
-            write_json({{"input", ry_in}, {"converged", local.converged}, {"stopped_by", local.stopped_by}, {"steps", local.steps},
+            write_json({{"input", ry_in}, {"converged", local.converged}, {"stopped_by", relax::to_string(local.stopped_by)}, {"steps", local.steps},
                         {"wall_seconds", local.wall_seconds}, {"control_points", out.points.size()},
                         {"pull_through_events", local.pull_through_events < 0 ? json(nullptr) : json(local.pull_through_events)},
                         {"warm_start", {{"previous", ry_warm}, {"project", ry_warm_project}, {"changed_points", local.changed_points},
@@ -911,7 +911,7 @@ int run_command_line(int argc, char** argv) {
                         {"yarn", yarn_json(out)}},
                        ry_report);
           if (!ry_png.empty()) render_yarn_tubes(out, ry_png, own_colours(out), ry_views);
-          return local.stopped_by == "diverged" ? 1 : 0;
+          return local.stopped_by == relax::StopReason::Diverged ? 1 : 0;
         }
         spdlog::warn("warm start: the splice would pass yarn through yarn at {} places; relaxing the whole garment from its emission instead",
                      local.splice_crossings);

@@ -361,11 +361,11 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   });
   auto yarn_out_curves = relax::with_points(yarn, state.points * run.scale);
   yarn_out_curves.radius = run.radius_out > 0 ? run.radius_out : yarn_out_curves.radius * run.scale;
-  const bool final = report.stopped_by != "interrupted";
+  const bool final = report.stopped_by != relax::StopReason::Interrupted;
   if (final) write_yarn(yarn_out_curves, run.output);
   if (final && !run.tubes.empty()) write_tubes(yarn_out_curves, run.tubes);
   spdlog::info("{} after {} steps ({:.2f} s): residual {:.3g}, {} guard hits, {} held points, {} pull-through events{}",
-               report.stopped_by, report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
+               relax::to_string(report.stopped_by), report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
                report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events),
                final ? "; wrote " + run.output : std::string());
   if (!final)
@@ -384,7 +384,7 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   json j = {{"input", run.input}, {"method", relax::to_string(options.method)}, {"backend", report.backend}, {"threads", omp_get_max_threads()},
             {"control_points", system.num_points()}, {"segments", system.num_segments()},
             {"contact_samples", system.sample_start.back() + system.contact_samples.back()}, {"contact_spacing_r", options.sampling.spacing},
-            {"converged", report.converged}, {"stopped_by", report.stopped_by}, {"steps", report.steps},
+            {"converged", report.converged}, {"stopped_by", relax::to_string(report.stopped_by)}, {"steps", report.steps},
             {"wall_seconds", report.wall_seconds}, {"us_per_point_step", report.steps > 0 ? 1e6 * report.wall_seconds / report.steps / system.num_points() : 0.0},
             {"residual", report.residual}, {"energy", report.energy}, {"contacts", report.contacts},
             {"first_residual_peak", report.first_residual_peak < 0 ? json(nullptr) : json(report.first_residual_peak)},

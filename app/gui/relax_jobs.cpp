@@ -178,22 +178,22 @@ void YarnRelaxJob::run() {
       relax::LocalRelaxReport local;
       const auto points = relax::relax_locally(m_stitch, m_yarn, *m_splice, m_options, m_local_options, m_take_up, {}, local);
       m_splice.reset();
-      if (local.stopped_by != "unsafe splice") {
+      if (local.stopped_by != relax::StopReason::UnsafeSplice) {
         std::lock_guard lock(m_mutex);
         m_local = local;
         m_points = points;
         m_backend_name = "cpu";
         m_progress.step = local.steps;
         m_progress.converged = local.converged;
-        m_progress.stopped_by = QString::fromStdString(local.stopped_by);
+        m_progress.stopped_by = QString::fromStdString(relax::to_string(local.stopped_by));
         m_progress.pull_through = local.pull_through_events;
       }
-      if (local.stopped_by != "unsafe splice" && local.stopped_by != "interrupted") {
+      if (local.stopped_by != relax::StopReason::UnsafeSplice && local.stopped_by != relax::StopReason::Interrupted) {
         emit updated();
         return;
       }
       // Interrupted: a resume goes on with the whole yarn from here. Unsafe: the whole yarn from its emission.
-      if (local.stopped_by == "interrupted") m_system.points = points;
+      if (local.stopped_by == relax::StopReason::Interrupted) m_system.points = points;
       if (m_interrupt) {
         emit updated();
         return;
@@ -209,7 +209,7 @@ void YarnRelaxJob::run() {
     m_backend_name = QString::fromStdString(report.backend);
     m_progress.step = report.steps;
     m_progress.converged = report.converged;
-    m_progress.stopped_by = QString::fromStdString(report.stopped_by);
+    m_progress.stopped_by = QString::fromStdString(relax::to_string(report.stopped_by));
     m_progress.pull_through = report.pull_through_events;
     if (m_options.active_set.enabled) m_active = report.active;
     if (report.first_residual_peak >= 0) m_progress.first_residual_peak = report.first_residual_peak;

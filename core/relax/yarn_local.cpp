@@ -95,7 +95,7 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
     }
   report.changed_stitches = static_cast<int>(seeds.size());
   report.converged = true;
-  report.stopped_by = "nothing changed";
+  report.stopped_by = StopReason::NothingChanged;
   if (report.changed_points == 0) return points;
   const std::vector<int> seed_list(seeds.begin(), seeds.end());
   report.pull_through_events = options.audit ? 0 : -1;
@@ -141,7 +141,7 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
         report.splice_crossings += is_new(crossing.segment_a) || is_new(crossing.segment_b);
       if (report.splice_crossings > 0) {
         report.converged = false;
-        report.stopped_by = "unsafe splice";
+        report.stopped_by = StopReason::UnsafeSplice;
         report.wall_seconds = seconds();
         return points;
       }
@@ -178,7 +178,7 @@ Eigen::Matrix3Xd relax_locally(const mesh::StitchMesh& mesh, const mesh::YarnCur
     }
     report.last_boundary_move = boundary;
     spdlog::info("local relaxation: {} rings, {} points relaxed and {} held, {} after {} steps; the outermost ring moved {:.3g} r", rings,
-                 report.relaxed_points, report.held_points, run.stopped_by, run.steps, boundary);
+                 report.relaxed_points, report.held_points, to_string(run.stopped_by), run.steps, boundary);
     if (!run.converged || boundary <= local.boundary_move || rings >= local.max_rings) break;
   }
   report.wall_seconds = seconds();

@@ -55,7 +55,7 @@ struct LocalRelaxReport {
   double wall_seconds = 0;      ///< the rounds, splice check included
   long pull_through_events = 0;  ///< the auditor's, summed (-1 when it did not run)
   bool converged = false;       ///< the last round
-  std::string stopped_by;       ///< the last round's, or "unsafe splice" (nothing relaxed: relax it all)
+  StopReason stopped_by = StopReason::None;  ///< the last round's, or UnsafeSplice (nothing relaxed: relax it all)
 };
 
 /// Relaxes the changed stitches of `mesh` and `rings` rings around them (growing while the outermost ring

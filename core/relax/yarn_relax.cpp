@@ -173,6 +173,21 @@ StopRule parse_stop_rule(const std::string& name) {
 
 std::string to_string(StopRule rule) { return rule == StopRule::Force ? "force" : "leaf"; }
 
+std::string to_string(StopReason reason) {
+  switch (reason) {
+    case StopReason::None: return "";
+    case StopReason::Converged: return "converged";
+    case StopReason::StepCap: return "step cap";
+    case StopReason::TimeCap: return "time cap";
+    case StopReason::Interrupted: return "interrupted";
+    case StopReason::Jammed: return "jammed";
+    case StopReason::Diverged: return "diverged";
+    case StopReason::NothingChanged: return "nothing changed";
+    case StopReason::UnsafeSplice: return "unsafe splice";
+  }
+  return "";
+}
+
 double bending_force_scale(const YarnParams& params, double radius) { return params.k_bend / (radius * radius * radius); }
 
 double largest_force_per_length(const YarnSystem& system, const Eigen::Matrix3Xd& gradient) {
@@ -383,7 +398,7 @@ public:
         if (m_active) m_active->wake_all();
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state, step {:.3g} s", state.step, state.time_step);
         if (++failures > 20) {
-          report.stopped_by = "diverged";
+          report.stopped_by = StopReason::Diverged;
           break;
         }
         refresh_contacts(state);
@@ -449,23 +464,23 @@ public:
       state.residual_prev = residual;
       if (converged) {
         report.converged = true;
-        report.stopped_by = "converged";
+        report.stopped_by = StopReason::Converged;
         break;
       }
       if (state.step >= m_options.max_steps) {
-        report.stopped_by = "step cap";
+        report.stopped_by = StopReason::StepCap;
         break;
       }
       if (m_options.max_seconds > 0 && seconds_since(started) >= m_options.max_seconds) {
-        report.stopped_by = "time cap";
+        report.stopped_by = StopReason::TimeCap;
         break;
       }
       if (m_options.interrupt && m_options.interrupt->load()) {
-        report.stopped_by = "interrupted";
+        report.stopped_by = StopReason::Interrupted;
         break;
       }
       if (jammed) {
-        report.stopped_by = "jammed";
+        report.stopped_by = StopReason::Jammed;
         spdlog::warn("step {}: {}", state.step, jam.describe());
         break;
       }
@@ -542,7 +557,7 @@ public:
       }
     }
     // The last state too, so that a run stopped by a cap goes on from where it stopped.
-    if (!m_options.checkpoint.empty() && report.stopped_by != "diverged") write_checkpoint(m_options.checkpoint, fingerprint, state);
+    if (!m_options.checkpoint.empty() && report.stopped_by != StopReason::Diverged) write_checkpoint(m_options.checkpoint, fingerprint, state);
     report.steps = state.step;
     report.wall_seconds = seconds_since(started);
     report.residual = state.residual0 > 0 ? residual / state.residual0 : 0;

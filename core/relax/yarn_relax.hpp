@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <string>
 
 #include <Eigen/Core>
@@ -175,9 +176,24 @@ struct YarnStepLog {
 };
 
 /// Outcome of a run; not converging is a result, not an exception.
+/// Why a run ended (a yarn relaxation, a local re-relaxation); logs, reports and JSON keep to_string's words.
+enum class StopReason {
+  None,            ///< not run yet
+  Converged,       ///< the stop rule held
+  StepCap,         ///< max_steps reached
+  TimeCap,         ///< max_seconds reached
+  Interrupted,     ///< a signal (Ctrl-C) or the app's Stop
+  Jammed,          ///< yarn pulled against yarn it may not pass: the same points held step after step (JamWatch)
+  Diverged,        ///< the energy became NaN or infinite
+  NothingChanged,  ///< a local re-relaxation with no changed stitch
+  UnsafeSplice,    ///< a local re-relaxation whose splice would cross yarn: nothing relaxed
+};
+std::string to_string(StopReason reason);  ///< "converged", "step cap", "time cap", ... ("" for None)
+inline std::ostream& operator<<(std::ostream& out, StopReason reason) { return out << to_string(reason); }
+
 struct YarnRelaxReport {
   bool converged = false;
-  std::string stopped_by;     ///< "converged", "step cap", "time cap", "interrupted", "jammed", "diverged"
+  StopReason stopped_by = StopReason::None;
   long steps = 0;
   double wall_seconds = 0, residual = 0, energy = 0;
   double force_residual = 0;  ///< the largest force per unit yarn length at the end, over B / r³ (StopRule::Force)

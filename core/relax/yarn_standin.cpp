@@ -157,7 +157,7 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name,
   targets.periodic = patch.map;
   YarnState state = initial_state(system, options);
   const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  if (run.stopped_by == "diverged") throw Error("", what, "the periodic patch's relaxation diverged");
+  if (run.stopped_by == StopReason::Diverged) throw Error("", what, "the periodic patch's relaxation diverged");
   Vector3d drift = Vector3d::Zero();
   int real = 0;
   for (int p = 0; p < system.num_points(); ++p)

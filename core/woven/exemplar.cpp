@@ -266,7 +266,7 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
   if (report) {
     report->steps = relaxed.steps;
     report->converged = relaxed.converged;
-    report->stopped_by = relaxed.stopped_by;
+    report->stopped_by = relax::to_string(relaxed.stopped_by);
     report->pull_through_events = relaxed.pull_through_events;
     report->relax_seconds = relax_seconds;
     report->sag = sag;

@@ -43,7 +43,7 @@ TEST(YarnLocal, ANoOpEditChangesNothing) {
   LocalRelaxReport report;
   const auto points = relax_locally(p.k.piece, p.k.yarn, splice, {}, {}, 1.0, {}, report);
   EXPECT_EQ(report.steps, 0);
-  EXPECT_EQ(report.stopped_by, "nothing changed");
+  EXPECT_EQ(report.stopped_by, StopReason::NothingChanged);
   EXPECT_TRUE(points == p.relaxed);  // bit for bit
 }
 
@@ -96,7 +96,7 @@ TEST(YarnLocal, ASpliceThatWouldPassYarnThroughYarnIsRefused) {
   const auto splice = splice_previous(yarn, p.k.yarn, mirrored);
   LocalRelaxReport report;
   const auto points = relax_locally(edited, yarn, splice, {}, {}, 1.0, {}, report);
-  EXPECT_EQ(report.stopped_by, "unsafe splice");
+  EXPECT_EQ(report.stopped_by, StopReason::UnsafeSplice);
   EXPECT_GT(report.splice_crossings, 0);
   EXPECT_TRUE(points == splice.points);
 }

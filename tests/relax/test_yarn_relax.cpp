@@ -203,14 +203,14 @@ TEST(YarnRelax, LinkedRingsSqueezedTightJamAndTheRunSaysSo) {
   options.max_steps = 4000;
   options.jam_steps = 50;
   const auto run = relaxed(system, options);
-  EXPECT_EQ(run.report.stopped_by, "jammed");
+  EXPECT_EQ(run.report.stopped_by, StopReason::Jammed);
   EXPECT_FALSE(run.report.converged);
   EXPECT_LT(run.report.steps, options.max_steps);
   EXPECT_GT(run.report.guard.held_points, 0);
   EXPECT_EQ(run.report.pull_through_events, 0);
   options.jam_steps = 0;
   options.max_steps = run.report.steps + 50;
-  EXPECT_EQ(relaxed(system, options).report.stopped_by, "step cap");
+  EXPECT_EQ(relaxed(system, options).report.stopped_by, StopReason::StepCap);
 }
 
 TEST(YarnRelax, AClippedStopScaleRelaxesPastAKink) {
@@ -365,7 +365,7 @@ TEST(YarnRelax, AnInterruptedRunGoesOnFromItsState) {
   const auto paused = relaxer->run(state, [&](const YarnStepLog& log) {
     if (log.step == 12) interrupt = true;
   });
-  EXPECT_EQ(paused.stopped_by, "interrupted");
+  EXPECT_EQ(paused.stopped_by, StopReason::Interrupted);
   EXPECT_FALSE(paused.converged);
   EXPECT_EQ(state.step, 12);
   interrupt = false;
@@ -408,7 +408,7 @@ TEST(YarnRelax, AStateThatIsNotFiniteIsRolledBackAndReportedAsDiverged) {
   auto state = initial_state(system, options);
   state.points(0, 3) = std::nan("");
   const auto report = make_cpu_yarn_relaxer(system, {}, options)->run(state);
-  EXPECT_EQ(report.stopped_by, "diverged");
+  EXPECT_EQ(report.stopped_by, StopReason::Diverged);
   EXPECT_GT(report.rollbacks, 0);
   EXPECT_FALSE(report.converged);
 }
