@@ -92,42 +92,48 @@ std::string suggestions(const std::string& word) {
 /// A centred double decrease (sk2p, s2kp, cdd) before pair_lace gives it a model.
 const std::string kCentred = "centred double decrease";
 
-/// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over beside the decrease that pays for it, on
-/// a right-side row: "yo, ssk" or "ssk, yo" is `ys`, "k2tog, yo" or "yo, k2tog" is `2u`, "yo, sk2p, yo" is `y3y`.
+/// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over beside the decrease that pays for it, a
+/// knit from the front: beside a d21k (ssk; ssp on a wrong-side row) it is `ys`, beside a d12k (k2tog; p2tog on a
+/// wrong-side row) `2u`, and "yo, sk2p, yo" (right-side rows) is `y3y`.
 /// A yarn-over with no decrease beside it is an increase (Yuksel 2012 Table 1's increase faces): it joins the
 /// plain stitch worked before it, or else the one after, into one face that takes that stitch's loop and makes
-/// two, named as seen from the front (a right-side row is worked right to left): "k1, yo" is `yk`, "yo, k1" `ky`,
-/// the same with purls `yp`, `py`; "yo, k1, yo" with no plain stitch after it is `yky` (`ypy`). Which neighbour
+/// two, named as seen from the front (a right-side row is worked right to left, a wrong-side row left to right
+/// with its knits purls): on a right-side row "k1, yo" is `yk`, "yo, k1" `ky`, the same with purls `yp`, `py`; on a
+/// wrong-side row "k1, yo" is `py`; "yo, k1, yo" with no plain stitch after it is `yky` (`ypy`). Which neighbour
 /// a yarn-over joins changes how the stitch mesh groups the loops, not the loops. Its decreases may lie anywhere in the row
 /// (feather and fan); the stitch mesh checks that each row makes as many loops as the next one takes.
-void pair_lace(std::vector<Item>& items, const std::string& source, int line) {
+void pair_lace(std::vector<Item>& items, const std::string& source, int line, bool right_side) {
   std::vector<Item> out;
   const auto is = [&](size_t i, const char* written) { return i < items.size() && items[i].written == written; };
   const auto plain = [](const Item& item) { return item.kind == Item::Stitch && (item.type == "k" || item.type == "p"); };
+  const auto type_is = [&](size_t i, const char* type) { return i < items.size() && items[i].kind == Item::Stitch && items[i].type == type; };
+  // `type` with a yarn-over worked after it (`after`) or before it, as seen from the front: a right-side row is
+  // worked right to left, so what is worked later lies on the left; a wrong-side row the other way.
+  const auto beside = [&](const std::string& type, bool after) { return after == right_side ? "y" + type : type + "y"; };
   for (size_t i = 0; i < items.size(); ++i) {
     Item item = items[i];
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
       item.type = "y3y";
       item.written = "yo, " + items[i + 1].written + ", yo";
       i += 2;
-    } else if ((is(i, "yo") && is(i + 1, "ssk")) || (is(i, "ssk") && is(i + 1, "yo"))) {
+    } else if ((is(i, "yo") && type_is(i + 1, "d21k")) || (type_is(i, "d21k") && is(i + 1, "yo"))) {
       item.type = "ys";
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
-    } else if ((is(i, "k2tog") && is(i + 1, "yo")) || (is(i, "yo") && is(i + 1, "k2tog"))) {
+    } else if ((type_is(i, "d12k") && is(i + 1, "yo")) || (is(i, "yo") && type_is(i + 1, "d12k"))) {
       item.type = "2u";
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
     } else if (is(i, "yo") && !out.empty() && plain(out.back())) {
-      out.back().type = "y" + out.back().type;  // worked before the yarn-over: on its right seen from the front
+      out.back().type = beside(out.back().type, true);
       out.back().written += ", yo";
       continue;
     } else if (is(i, "yo") && i + 1 < items.size() && plain(items[i + 1])) {
-      item.type = items[i + 1].type + "y";  // worked after it: on its left
+      item.type = beside(items[i + 1].type, false);
       item.written = "yo, " + items[i + 1].written;
       ++i;
-    } else if (is(i, "yo") && !out.empty() && (out.back().type == "ky" || out.back().type == "py")) {  // made just above from "yo, k1"
-      out.back().type = "y" + out.back().type;  // "yo, k1, yo" with nothing plain after it: one loop into three
+    } else if (is(i, "yo") && !out.empty() && (out.back().type == beside("k", false) || out.back().type == beside("p", false))) {
+      out.back().type = beside(out.back().type, true);  // "yo, k1, yo" with nothing plain after it: one loop into three
       out.back().written += ", yo";
       continue;
     } else if (is(i, "yo")) {
@@ -409,7 +415,7 @@ private:
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
       } else if (match(R"(yo(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        add(items, stitch(at, "yo", "y", ""), m[1].length() ? count_of(m[1].str()) : 1);
+        add(items, stitch(at, "yo", "y", "y"), m[1].length() ? count_of(m[1].str()) : 1);
       } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
@@ -525,7 +531,7 @@ WrittenRow split_row(std::vector<Item> written, bool right_side, int line, const
     row.repeat = flat;
   }
   for (auto* part : {&row.before, &row.repeat, &row.after})
-    if (right_side) pair_lace(*part, source, line);
+    pair_lace(*part, source, line, right_side);
   for (const auto* part : {&row.before, &row.repeat, &row.after})
     for (const auto& item : *part) {
       if (item.kind == Item::Star || item.kind == Item::Repeat) throw Error(source, where, "holds more than one '*' repeat; write one repeat per row");

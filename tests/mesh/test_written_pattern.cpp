@@ -320,9 +320,10 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
   EXPECT_NE(mesh::write_chart_pattern(cable).find("format chart\nkey C C4B\n- - . . . . - -   4\n"), std::string::npos) << mesh::write_chart_pattern(cable);
   EXPECT_NE(mesh::write_written_pattern(cable).find("Row 1 (RS): p2, C4B, p2.\nRow 2 (WS): k2, p4, k2.\n"), std::string::npos)
       << mesh::write_written_pattern(cable);
-  // Lace pairs are read on right-side rows only: a pattern with one on a wrong-side row is charted in the round.
+  // A lace pair on a wrong-side row is worked from that side: "yo, ssp" is ys from the front.
   const auto lace = mesh::parse_pattern("format knit\nk ys k\nk k k k\n", "l.knit");  // the top line is row 2
-  EXPECT_NE(mesh::write_chart_pattern(lace).find("format chart round"), std::string::npos);
+  EXPECT_NE(mesh::write_chart_pattern(lace).find("format chart\n"), std::string::npos) << mesh::write_chart_pattern(lace);
+  EXPECT_NE(mesh::write_written_pattern(lace).find("Row 2 (WS): p1, yo, ssp, p1."), std::string::npos) << mesh::write_written_pattern(lace);
   EXPECT_NE(error_of([] { mesh::write_chart_pattern(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave")); }).find("woven"),
             std::string::npos);
 }
@@ -432,6 +433,13 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
   EXPECT_EQ(error_of([] { mesh::parse_pattern("Row 1 (RS): Sl1, yo, sl1.\nRow 2: Purl.\n", "e.txt"); }),
             "e.txt: line 1, column 18: a yarn-over has a stitch model beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...) or beside "
             "a plain knit or purl stitch it increases into ('k1, yo', 'yo, p1'); here it has neither");
+  // On a wrong-side row, worked left to right from the front with its knits purls: "k1, yo" is py, "yo, k1" yp,
+  // "yo, k1, yo" ypy; a yarn-over beside p2tog is 2u and beside ssp ys, as k2tog's and ssk's on a right-side row.
+  const auto ws_of = [](const std::string& row) { return rows_text(mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2 (WS): " + row + "\n", "w.txt")); };
+  EXPECT_EQ(ws_of("K1, yo, k2tog, k1."), "k k k k / py d12p p / ");
+  EXPECT_EQ(ws_of("P1, p2tog, yo, p1."), "k k k k / k 2u k / ");
+  EXPECT_EQ(ws_of("P1, yo, ssp, p1."), "k k k k / k ys k / ");
+  EXPECT_EQ(ws_of("Yo, k1, yo, k3tog."), "k k k k / ypy d123p / ");
 }
 
 TEST(PatternColours, DeclaredAsPatternsNameThem) {
