@@ -216,6 +216,17 @@ StitchModel bind_off() {
   return m;
 }
 
+/// `model` mirrored through the fabric's plane (h to -h) under a new name: a knit becomes a purl, a yarn-over
+/// stays one, the stacking and the crossings stay where they are.
+StitchModel mirrored(StitchModel model, const std::string& name, const std::string& note) {
+  model.name = name;
+  model.note = note;
+  for (auto& piece : model.pieces)
+    for (auto& point : piece.points)
+      if (!point.crossing) point.uvh.z() = -point.uvh.z();
+  return model;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -275,6 +286,14 @@ int main(int argc, char** argv) {
                           {{Action::YarnOver}, {Action::Knit}}, {1, 0}));
   models.push_back(stitch("2u", "lace: a knit loop through both loops below, stacked 12 (k2tog), then a yarn-over" + leaf, 2,
                           {{Action::Knit}, {Action::YarnOver}}, {0, 1}));
+  // The same with a purl through the two loops (garter lace: "yo, k2tog" from the wrong side): the knit tiles
+  // mirrored through the fabric's plane, which turns each knit into a purl and keeps the stacking, so that the heads
+  // keep their layers past the yarn-over.
+  const StitchModel ys = models[models.size() - 2], two_u = models.back();
+  models.push_back(mirrored(ys, "ysp", "lace: a yarn-over, then a purl loop through both loops below, stacked 21 (ys mirrored through the "
+                                       "fabric: yo, ssk worked from the wrong side)"));
+  models.push_back(mirrored(two_u, "2up", "lace: a purl loop through both loops below, stacked 12, then a yarn-over (2u mirrored through the "
+                                          "fabric: k2tog, yo worked from the wrong side)"));
   models.push_back(stitch("y3y", "lace: a yarn-over, a knit loop through the three loops below, stacked 213 (sk2p), a yarn-over" + leaf, 3,
                           {{Action::YarnOver}, {Action::Knit}, {Action::YarnOver}}, {1, 0, 2}));
   for (int a = 1; a <= 3; ++a)

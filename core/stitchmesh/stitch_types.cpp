@@ -15,7 +15,7 @@ const std::vector<StitchType>& stitch_types() {
     add({"kpk", "kyk", "yky", "kpy", "ykp", "pkp", "pyp", "ypy", "pky", "ypk"}, 1, 3);
     add({"d12k", "d21k", "d12p", "d21p"}, 2, 1);
     add({"d123k", "d132k", "d213k", "d231k", "d312k", "d321k", "d123p", "d132p", "d213p", "d231p", "d312p", "d321p"}, 3, 1);
-    add({"ys", "2u"}, 2, 2);  // Leaf 2018 Table 2's lace tiles: a yarn-over beside a decrease
+    add({"ys", "2u", "ysp", "2up"}, 2, 2);  // Leaf 2018 Table 2's lace tiles: a yarn-over beside a decrease (and their purls)
     add({"y3y"}, 3, 3);
     return t;
   }();

@@ -94,7 +94,8 @@ const std::string kCentred = "centred double decrease";
 
 /// Leaf's lace stitches (Leaf 2018 Table 2), one face each: a yarn-over beside the decrease that pays for it, a
 /// knit from the front: beside a d21k (ssk; ssp on a wrong-side row) it is `ys`, beside a d12k (k2tog; p2tog on a
-/// wrong-side row) `2u`, and "yo, sk2p, yo" (right-side rows) is `y3y`.
+/// wrong-side row) `2u`, and "yo, sk2p, yo" (right-side rows) is `y3y`; beside a purl from the front (d21p, d12p:
+/// garter lace's "yo, k2tog" from the wrong side) `ysp` and `2up`.
 /// A yarn-over with no decrease beside it is an increase (Yuksel 2012 Table 1's increase faces): it joins the
 /// plain stitch worked before it, or else the one after, into one face that takes that stitch's loop and makes
 /// two, named as seen from the front (a right-side row is worked right to left, a wrong-side row left to right
@@ -122,6 +123,14 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
       ++i;
     } else if ((type_is(i, "d12k") && is(i + 1, "yo")) || (is(i, "yo") && type_is(i + 1, "d12k"))) {
       item.type = "2u";
+      item.written = items[i].written + ", " + items[i + 1].written;
+      ++i;
+    } else if ((is(i, "yo") && type_is(i + 1, "d21p")) || (type_is(i, "d21p") && is(i + 1, "yo"))) {
+      item.type = "ysp";  // the same with a purl from the front (garter lace: "yo, ssk" from the wrong side)
+      item.written = items[i].written + ", " + items[i + 1].written;
+      ++i;
+    } else if ((type_is(i, "d12p") && is(i + 1, "yo")) || (is(i, "yo") && type_is(i + 1, "d12p"))) {
+      item.type = "2up";
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
     } else if (is(i, "yo") && !out.empty() && plain(out.back())) {

@@ -436,10 +436,13 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
   // On a wrong-side row, worked left to right from the front with its knits purls: "k1, yo" is py, "yo, k1" yp,
   // "yo, k1, yo" ypy; a yarn-over beside p2tog is 2u and beside ssp ys, as k2tog's and ssk's on a right-side row.
   const auto ws_of = [](const std::string& row) { return rows_text(mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2 (WS): " + row + "\n", "w.txt")); };
-  EXPECT_EQ(ws_of("K1, yo, k2tog, k1."), "k k k k / py d12p p / ");
+  EXPECT_EQ(ws_of("K1, yo, k1, k2tog."), "k k k k / py p d12p / ");
   EXPECT_EQ(ws_of("P1, p2tog, yo, p1."), "k k k k / k 2u k / ");
   EXPECT_EQ(ws_of("P1, yo, ssp, p1."), "k k k k / k ys k / ");
   EXPECT_EQ(ws_of("Yo, k1, yo, k3tog."), "k k k k / ypy d123p / ");
+  // Garter lace: "k2tog, yo" from the wrong side is a purl decrease beside its yarn-over from the front (2up, ysp).
+  EXPECT_EQ(ws_of("K1, k2tog, yo, k1."), "k k k k / p 2up p / ");
+  EXPECT_EQ(ws_of("K1, yo, ssk, k1."), "k k k k / p ysp p / ");
 }
 
 TEST(PatternColours, DeclaredAsPatternsNameThem) {
