@@ -111,26 +111,21 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
   // `type` with a yarn-over worked after it (`after`) or before it, as seen from the front: a right-side row is
   // worked right to left, so what is worked later lies on the left; a wrong-side row the other way.
   const auto beside = [&](const std::string& type, bool after) { return after == right_side ? "y" + type : type + "y"; };
+  // A yarn-over and its decrease, in either order: the lace face (a purl from the front: garter lace's ysp, 2up).
+  static const std::pair<const char*, const char*> kLaceFaces[] = {{"d21k", "ys"}, {"d12k", "2u"}, {"d21p", "ysp"}, {"d12p", "2up"}};
+  const auto lace_face = [&](size_t i) -> const char* {
+    for (const auto& [decrease, face] : kLaceFaces)
+      if ((is(i, "yo") && type_is(i + 1, decrease)) || (type_is(i, decrease) && is(i + 1, "yo"))) return face;
+    return nullptr;
+  };
   for (size_t i = 0; i < items.size(); ++i) {
     Item item = items[i];
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
       item.type = "y3y";
       item.written = "yo, " + items[i + 1].written + ", yo";
       i += 2;
-    } else if ((is(i, "yo") && type_is(i + 1, "d21k")) || (type_is(i, "d21k") && is(i + 1, "yo"))) {
-      item.type = "ys";
-      item.written = items[i].written + ", " + items[i + 1].written;
-      ++i;
-    } else if ((type_is(i, "d12k") && is(i + 1, "yo")) || (is(i, "yo") && type_is(i + 1, "d12k"))) {
-      item.type = "2u";
-      item.written = items[i].written + ", " + items[i + 1].written;
-      ++i;
-    } else if ((is(i, "yo") && type_is(i + 1, "d21p")) || (type_is(i, "d21p") && is(i + 1, "yo"))) {
-      item.type = "ysp";  // the same with a purl from the front (garter lace: "yo, ssk" from the wrong side)
-      item.written = items[i].written + ", " + items[i + 1].written;
-      ++i;
-    } else if ((type_is(i, "d12p") && is(i + 1, "yo")) || (is(i, "yo") && type_is(i + 1, "d12p"))) {
-      item.type = "2up";
+    } else if (const char* face = lace_face(i)) {
+      item.type = face;
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
     } else if (is(i, "yo") && !out.empty() && plain(out.back())) {
