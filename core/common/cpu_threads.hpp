@@ -3,8 +3,8 @@
 namespace skein {
 
 /// OpenMP threads that sleep while they wait (issue 28, "steady under load"). libgomp's threads spin for a while
-/// at every barrier; beside other work on few cores that spinning takes the cores the other work needs (a
-/// relaxation ran 4.5 to 5.8 times slower beside a second one on 2 cores). libgomp reads OMP_WAIT_POLICY once, as
+/// at every barrier; beside other work on few cores that spinning takes the cores the other work needs (on 2
+/// cores a relaxation ran 4.7 to 12 times slower beside a second one). libgomp reads OMP_WAIT_POLICY once, as
 /// it loads, so setting it later is too late: when the user has not chosen a policy, this sets
 /// OMP_WAIT_POLICY=passive (and GOMP_SPINCOUNT=3000, a few microseconds, unless set) and executes the program
 /// again with the same arguments. Call it first in main().

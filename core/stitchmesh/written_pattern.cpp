@@ -351,58 +351,37 @@ private:
         // The float lies on the side the yarn is held: behind the fabric seen from the front is `s`, in front `sk`.
         const bool float_behind = front != m_rs;
         add(items, stitch(at, m.str(0), float_behind ? "s" : "sk", float_behind ? "s" : "sk"), n);
-      } else if (match(R"(c(\d+)(f|b))", m) || match(R"((\d)/(\d)\s*(lc|rc|lt|rt))", m)) {
+      } else if (match(R"((c|t)(\d+)(f|b))", m) || match(R"((\d)/(\d)\s*(l|r)(p?)(?:c|t))", m)) {
+        // Cables, and travelling stitches: knits crossing over purls, the knits in front (the Craft Yarn Council's
+        // T3F: sl 2 to cn, hold in front, p1, k2 from cn). CnB and CnF cross half over half; Tn crosses n - 1 knits
+        // over one purl (T4: two over two); A/B RC, LC, RPC, LPC (RT, LT, ...) cross A stitches over B.
         m_pos += static_cast<size_t>(m.length(0));
         if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
-        int a = 0, b = 0, order = 1;
-        if (m.str(0)[0] == 'c') {
-          const int n = count_of(m[1].str());
-          if (n % 2 != 0 || n < 2 || n > 6) fail(at, "'" + m.str(0) + "': cables of 2, 4 or 6 stitches (half over half) have models");
-          a = b = n / 2;
-          // CnB: the left half (seen from the front) crosses right, in front; CnF: the right half crosses left in
-          // front, so the left half crosses right behind.
-          order = m[2].str() == "b" ? 1 : -1;
+        int front = 0, behind = 0;  // the stitches that travel in front, and those they cross
+        bool right = false, purl_behind = false;
+        if (m.str(0)[0] == 'c' || m.str(0)[0] == 't') {
+          const int n = count_of(m[2].str());
+          purl_behind = m[1].str() == "t";
+          if (!purl_behind && (n % 2 != 0 || n < 2 || n > 6)) fail(at, "'" + m.str(0) + "': cables of 2, 4 or 6 stitches (half over half) have models");
+          if (purl_behind && (n < 2 || n > 4))
+            fail(at, "'" + m.str(0) + "': travelling cables of 2, 3 or 4 stitches (T2: 1 over 1, T3: 2 over 1, T4: 2 over 2) have models");
+          front = purl_behind && n != 4 ? n - 1 : n / 2;
+          behind = n - front;
+          right = m[3].str() == "b";  // CnB, TnB: the stitches in front travel right; CnF, TnF: left
         } else {
-          const int x = count_of(m[1].str()), y = count_of(m[2].str());
-          const bool right = m[3].str()[0] == 'r';
-          // A/B RC: the A stitches travel right in front; A/B LC: the A stitches travel left in front, so the B
-          // stitches on their left cross right behind.
-          a = right ? x : y;
-          b = right ? y : x;
-          order = right ? 1 : -1;
+          front = count_of(m[1].str());
+          behind = count_of(m[2].str());
+          right = m[3].str() == "r";
+          purl_behind = m[4].length() > 0;
         }
-        if (a < 1 || a > 3 || b < 1 || b > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
+        if (front < 1 || front > 3 || behind < 1 || behind > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
+        // Seen from the front, the cable's left loops cross right: in front (order 1) when the stitches in front
+        // travel right, else behind them (order -1).
         Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);
-        c.over = a;
-        c.under = b;
-        c.order = order;
-        items.push_back(c);
-      } else if (match(R"(t(\d)(f|b))", m) || match(R"((\d)/(\d)\s*(lpc|rpc|lpt|rpt))", m)) {
-        // Travelling stitches (the Craft Yarn Council's T3F: sl 2 to cn, hold in front, p1, k2 from cn): knits cross
-        // over purls, the knits in front. Tn: n - 1 knits over one purl (T4: two over two); A/B LPC or RPC: A knits over
-        // B purls, travelling left (F) or right (B) in front.
-        m_pos += static_cast<size_t>(m.length(0));
-        if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
-        int knits = 0, purls = 0;
-        bool left = false;
-        if (m.str(0)[0] == 't') {
-          const int n = count_of(m[1].str());
-          if (n < 2 || n > 4) fail(at, "'" + m.str(0) + "': travelling cables of 2, 3 or 4 stitches (T2: 1 over 1, T3: 2 over 1, T4: 2 over 2) have models");
-          knits = n == 4 ? 2 : n - 1;
-          purls = n - knits;
-          left = m[2].str() == "f";
-        } else {
-          knits = count_of(m[1].str());
-          purls = count_of(m[2].str());
-          left = m[3].str()[0] == 'l';
-        }
-        if (knits < 1 || knits > 3 || purls < 1 || purls > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
-        // As CnF and CnB: the loops on the left (a) cross right, in front (order 1: the knits travel right) or behind.
-        Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);
-        c.over = left ? purls : knits;
-        c.under = left ? knits : purls;
-        c.order = left ? -1 : 1;
-        c.purl_behind = true;
+        c.over = right ? front : behind;
+        c.under = right ? behind : front;
+        c.order = right ? 1 : -1;
+        c.purl_behind = purl_behind;
         items.push_back(c);
       } else if (match(R"((k|p)fb)", m)) {
         // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's increase
