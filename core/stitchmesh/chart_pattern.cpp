@@ -28,13 +28,21 @@ struct Symbol {
   bool no_stitch = false;
 };
 
-/// The cells a cable abbreviation is drawn over: C4F, T3B (N), 2/2 LC, 1/2 RPC (a + b); 1 for the rest (a "C0B"
-/// too: the written reader then says which cables have models). Never 0, which would draw it over nothing.
+/// The cells a symbol is drawn over: one a stitch on the needle after the row. A cable: C4F, T3B (N), 2/2 LC,
+/// 1/2 RPC (a + b); an increase into one stitch: kfb, pfb (2), "(k1, p1, k1) in next st" (one a stitch in the
+/// group); 1 for the rest (a "C0B" too: the written reader then says which cables have models). Never 0, which
+/// would draw it over nothing.
 int cells_of(const std::string& abbreviation) {
-  static const std::regex single(R"(^[ct]([1-9])[fb]$)", std::regex::icase), split(R"(^([1-9])\s*/\s*([1-9])\s*(?:lc|rc|lt|rt|lpc|rpc)$)", std::regex::icase);
+  static const std::regex single(R"(^[ct]([1-9])[fb]$)", std::regex::icase), split(R"(^([1-9])\s*/\s*([1-9])\s*(?:lc|rc|lt|rt|lpc|rpc)$)", std::regex::icase),
+      front_back(R"(^[kp]fb$)", std::regex::icase), into_one(R"(^[(\[]([^)\]]*)[)\]]\s*(?:all\s+)?in(?:to)?\s+(?:the\s+)?(?:next|same)\s+(?:st|stitch)$)", std::regex::icase);
   std::smatch m;
   if (std::regex_match(abbreviation, m, single)) return m[1].str()[0] - '0';
   if (std::regex_match(abbreviation, m, split)) return (m[1].str()[0] - '0') + (m[2].str()[0] - '0');
+  if (std::regex_match(abbreviation, front_back)) return 2;
+  if (std::regex_match(abbreviation, m, into_one)) {
+    const std::string group = m[1].str();
+    return std::min(9, 1 + static_cast<int>(std::count(group.begin(), group.end(), ',')));
+  }
   return 1;
 }
 
@@ -302,7 +310,7 @@ std::string cells_of_type(const std::string& type) {
                                                            {"d12k", "/"}, {"d21k", "\\"}, {"d12p", ")"}, {"d21p", "("},
                                                            {"ys", "o\\"}, {"2u", "/o"},   {"y3y", "o^o"},
                                                            {"ky", ".o"},  {"yk", "o."},   {"py", "-o"},  {"yp", "o-"},   {"yky", "o.o"}, {"ypy", "o-o"},
-                                                           {"d123k", "{"}, {"d321k", "}"}, {"d123p", "<"}, {"d321p", ">"}};
+                                                           {"d123k", "{"}, {"d321k", "}"}, {"d123p", "<"}, {"d321p", ">"}, {"q", "%"}};
   const auto it = cells.find(type);
   return it == cells.end() ? "" : it->second;
 }
@@ -310,11 +318,68 @@ std::string cells_of_type(const std::string& type) {
 /// The keys write_chart gives the symbols the Craft Yarn Council's key lacks (or means on right-side rows
 /// only), each with its wrong-side stitch so that a flat chart reads them on either side.
 const std::vector<std::pair<char, std::string>> kWrittenKeys = {
-    {'t', "k1 tbl / p1 tbl"}, {'w', "sl1 wyif / sl1 wyib"}, {')', "p2tog / k2tog"}, {'(', "ssp / ssk"},
-    {'{', "k3tog / p3tog"},   {'}', "sssk / sssp"},         {'<', "p3tog / k3tog"}, {'>', "sssp / sssk"}};
+    {'t', "k1 tbl / p1 tbl"}, {'%', "p1 tbl / k1 tbl"}, {'w', "sl1 wyif / sl1 wyib"}, {')', "p2tog / k2tog"}, {'(', "ssp / ssk"},
+    {'{', "k3tog / p3tog"},   {'}', "sssk / sssp"},     {'<', "p3tog / k3tog"},       {'>', "sssp / sssk"}};
 
-/// A cable as the written reader names it: CnB / CnF half over half, else A/B RC or A/B LC.
-std::string cable_abbreviation(const PatternCable& c) {
+/// An increase face worked into one stitch (Yuksel 2012 Table 1; kp, xk, kpk, kyk, ...: its loops named from the
+/// front, left to right) as the written reader takes it on a right-side and a wrong-side row: kfb and pfb where
+/// they mean it, else "(k1, yo, k1) in next st" (a right-side row is worked right to left; a wrong-side row left
+/// to right, its knits purls). Empty strings for other types.
+std::pair<std::string, std::string> into_one_meaning(const std::string& type) {
+  const StitchType* t = find_stitch_type(type);
+  if (!t || t->bottom != 1 || t->top < 2 || type.find_first_not_of("kpyxq") != std::string::npos) return {};
+  static const std::map<char, std::pair<const char*, const char*>> kWorked = {
+      {'k', {"k1", "p1"}}, {'p', {"p1", "k1"}}, {'y', {"yo", "yo"}}, {'x', {"k1 tbl", "p1 tbl"}}, {'q', {"p1 tbl", "k1 tbl"}}};
+  const auto group = [&](bool right_side) {
+    if (type == (right_side ? "xk" : "pq")) return std::string("kfb");
+    if (type == (right_side ? "qp" : "kx")) return std::string("pfb");
+    std::string loops = type, out;
+    if (right_side) std::reverse(loops.begin(), loops.end());
+    for (char c : loops) out += (out.empty() ? "(" : ", ") + std::string(right_side ? kWorked.at(c).first : kWorked.at(c).second);
+    return out + ") in next st";
+  };
+  return {group(true), group(false)};
+}
+
+/// The symbols write_chart draws increases worked into one stitch with, one a kind, each keyed.
+const std::string kIntoOneSymbols = "+*=&$@?~;:";
+
+/// The decrease's cell of one of Leaf's lace faces (a yarn-over beside the decrease that pays for it: ys, 2u,
+/// and garter lace's ysp, 2up); 0 for other types.
+char lace_decrease(const std::string& type) {
+  if (type == "ys") return '\\';
+  if (type == "2u") return '/';
+  if (type == "ysp") return '(';
+  if (type == "2up") return ')';
+  return 0;
+}
+
+/// Each lace face's cells in a row as seen from the front, in an order the written reader pairs back into the
+/// same faces: it pairs a yarn-over with the decrease beside it first come, first served in working order, so a
+/// face worked right after a decrease is drawn decrease first (else that decrease would take its yarn-over).
+/// Empty strings for the row's other faces.
+std::vector<std::string> lace_cells(const std::vector<std::string>& row, bool right_side) {
+  std::vector<std::string> out(row.size());
+  bool after_decrease = false;
+  for (size_t k = 0; k < row.size(); ++k) {
+    const size_t f = right_side ? row.size() - 1 - k : k;  // working order
+    const char decrease = lace_decrease(row[f]);
+    if (!decrease) {
+      after_decrease = row[f][0] == 'd';
+      continue;
+    }
+    std::string worked = after_decrease ? std::string{decrease, 'o'} : std::string{'o', decrease};
+    after_decrease = worked.back() == decrease;
+    if (right_side) std::reverse(worked.begin(), worked.end());
+    out[f] = worked;
+  }
+  return out;
+}
+
+/// A cable as the written reader names it: CnB / CnF half over half, else A/B RC or A/B LC; a travelling cable
+/// (the stitches that crossed behind purled) A/B RPC or A/B LPC, A the stitches in front.
+std::string cable_abbreviation(const PatternCable& c, bool purl_behind) {
+  if (purl_behind) return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RPC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LPC";
   if (c.over == c.under) return "C" + std::to_string(2 * c.over) + (c.order > 0 ? "B" : "F");
   return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LC";
 }
@@ -335,13 +400,28 @@ std::string chart_text(const Pattern& pattern, bool round) {
   // ("key a k B / p B"), from these letters (the default key's and the written keys' left out).
   static const std::string kColourSymbols = "abcdefghijklmnpqrsuyz";
   std::map<std::pair<char, int>, char> coloured;
-  for (size_t r = 0; r < pattern.rows.size(); ++r)
+  std::map<std::string, char> into_one;  // increase type -> its symbol
+  for (size_t r = 0; r < pattern.rows.size(); ++r) {
+    const std::vector<std::string> lace = lace_cells(pattern.rows[r], round || r % 2 == 0);
     for (size_t f = 0; f < pattern.rows[r].size(); ++f) {
       const std::string& type = pattern.rows[r][f];
-      std::string cells = cells_of_type(type);
+      std::string cells = lace[f].empty() ? cells_of_type(type) : lace[f];
+      if (cells.empty() && !into_one_meaning(type).first.empty()) {
+        auto [it, added] = into_one.try_emplace(type, '\0');
+        if (added) {
+          if (into_one.size() > kIntoOneSymbols.size())
+            throw Error("", "row " + std::to_string(r + 1), "more than " + std::to_string(kIntoOneSymbols.size()) + " kinds of increase into one stitch for one chart");
+          it->second = kIntoOneSymbols[into_one.size() - 1];
+        }
+        if (!pattern.colours.empty() && pattern.colours[r][f] != 0)
+          throw Error("", "row " + std::to_string(r + 1) + ", stitch " + std::to_string(f + 1),
+                      "an increase into one stitch in a colour other than the first (" + pattern.palette[0].name + ") has no chart symbol yet");
+        grid[r] += std::string(static_cast<size_t>(find_stitch_type(type)->top), it->second);
+        continue;
+      }
       if (cells.empty())
         throw Error("", "row " + std::to_string(r + 1) + ", stitch " + std::to_string(f + 1),
-                    "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, slips, two- and three-into-one decreases, yarn-overs beside a knit or purl, Leaf's yo pairs and cables)");
+                    "stitch type '" + type + "' has no chart symbol yet (charts hold k, p, k1 tbl, p1 tbl, slips, two- and three-into-one decreases, increases into one stitch, yarn-overs beside a knit or purl, Leaf's yo pairs and cables)");
       used.insert(cells.begin(), cells.end());
       const int colour = pattern.colours.empty() ? 0 : pattern.colours[r][f];
       if (colour > 0)
@@ -356,6 +436,7 @@ std::string chart_text(const Pattern& pattern, bool round) {
         }
       grid[r] += cells;
     }
+  }
   // Cables over their cells, a symbol each kind (C, D, E, ...).
   std::map<std::string, char> cable_symbol;
   for (const auto& c : pattern.cables) {
@@ -368,16 +449,22 @@ std::string chart_text(const Pattern& pattern, bool round) {
         loop += find_stitch_type(pattern.rows[static_cast<size_t>(c.row)][f])->top;
       }
     }
-    const std::string name = cable_abbreviation(c);
+    const int n = c.over + c.under;
+    std::string& row = grid.at(static_cast<size_t>(c.row));
+    const std::string drawn = c.first_loop < 0 || c.first_loop + n > static_cast<int>(row.size()) ? "" : row.substr(static_cast<size_t>(c.first_loop), static_cast<size_t>(n));
+    // Crossed, the `under` loops lie on the left and the `over` loops on the right; a travelling cable purls the
+    // ones that went behind (the written reader's append_row).
+    const std::string knits(static_cast<size_t>(n), '.'),
+        travelling = c.order > 0 ? std::string(static_cast<size_t>(c.under), '-') + std::string(static_cast<size_t>(c.over), '.')
+                                 : std::string(static_cast<size_t>(c.under), '.') + std::string(static_cast<size_t>(c.over), '-');
+    if (drawn != knits && drawn != travelling)
+      throw Error("", "row " + std::to_string(c.row + 1) + ", loop " + std::to_string(c.first_loop + 1),
+                  "a cable over stitches other than knits (or knits crossing purls behind them) has no chart symbol yet");
+    const std::string name = cable_abbreviation(c, drawn != knits);
     if (!cable_symbol.count(name)) {
       if (cable_symbol.size() >= 20) throw Error("", "row " + std::to_string(c.row + 1), "more than 20 kinds of cable for one chart");
       cable_symbol[name] = static_cast<char>('C' + cable_symbol.size());
     }
-    const int n = c.over + c.under;
-    std::string& row = grid.at(static_cast<size_t>(c.row));
-    if (c.first_loop < 0 || c.first_loop + n > static_cast<int>(row.size()) || row.substr(static_cast<size_t>(c.first_loop), static_cast<size_t>(n)) != std::string(static_cast<size_t>(n), '.'))
-      throw Error("", "row " + std::to_string(c.row + 1) + ", loop " + std::to_string(c.first_loop + 1),
-                  "a cable over stitches other than knits has no chart symbol yet");
     row.replace(static_cast<size_t>(c.first_loop), static_cast<size_t>(n), static_cast<size_t>(n), cable_symbol[name]);
   }
   std::ostringstream out;
@@ -397,6 +484,10 @@ std::string chart_text(const Pattern& pattern, bool round) {
     out << "\n";
   }
   for (const auto& [name, symbol] : cable_symbol) out << "key " << symbol << " " << name << "\n";
+  for (const auto& [type, symbol] : into_one) {
+    const auto [right, wrong] = into_one_meaning(type);
+    out << "key " << symbol << " " << right << " / " << wrong << "\n";
+  }
   const int digits = static_cast<int>(std::to_string(grid.size()).size());
   for (size_t r = grid.size(); r-- > 0;) {
     for (size_t i = 0; i < grid[r].size(); ++i) out << (i ? " " : "") << grid[r][i];
