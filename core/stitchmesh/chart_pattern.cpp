@@ -154,6 +154,13 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
       started = true;
       continue;
     }
+    static const std::regex cast_on(R"(^cast\s+on\s+\d+\s*(?:sts|stitches)\.?$)", std::regex::icase);
+    if (std::regex_match(content, cast_on)) {
+      // "cast on 12 sts": a shaped piece, knitted once as drawn (written_pattern.hpp); passed on to the written reader.
+      if (!drawn.empty()) throw Error(source, at(line_no, 0), "'cast on' after the chart's rows: give it first");
+      comments.push_back(content);
+      continue;
+    }
     if (read_colour_declaration(content, false, 0, source, at(line_no, 0))) {
       // "colour B: red #b3261e": passed on to the written reader, which keeps the palette; a key gives the
       // colour's stitches ("key X k1 B / p1 B").
@@ -341,6 +348,13 @@ std::pair<std::string, std::string> into_one_meaning(const std::string& type) {
   return {group(true), group(false)};
 }
 
+/// The stitches a row takes from the row below (`made` false) or leaves on the needle (true).
+int row_stitches(const std::vector<std::string>& row, bool made) {
+  int n = 0;
+  for (const auto& type : row) n += made ? find_stitch_type(type)->top : find_stitch_type(type)->bottom;
+  return n;
+}
+
 /// The symbols write_chart draws increases worked into one stitch with, one a kind, each keyed.
 const std::string kIntoOneSymbols = "+*=&$@?~;:";
 
@@ -377,9 +391,14 @@ std::vector<std::string> lace_cells(const std::vector<std::string>& row, bool ri
 }
 
 /// A cable as the written reader names it: CnB / CnF half over half, else A/B RC or A/B LC; a travelling cable
-/// (the stitches that crossed behind purled) A/B RPC or A/B LPC, A the stitches in front.
+/// (the stitches that crossed behind purled) T2, T3, T4 B/F where the Craft Yarn Council has the name (1 knit over
+/// 1 purl, 2 over 1, 2 over 2), else A/B RPC or A/B LPC, A the stitches in front.
 std::string cable_abbreviation(const PatternCable& c, bool purl_behind) {
-  if (purl_behind) return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RPC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LPC";
+  if (purl_behind) {
+    const int front = c.order > 0 ? c.over : c.under, behind = c.order > 0 ? c.under : c.over;
+    if ((front == 1 && behind == 1) || (front == 2 && (behind == 1 || behind == 2))) return "T" + std::to_string(front + behind) + (c.order > 0 ? "B" : "F");
+    return std::to_string(front) + "/" + std::to_string(behind) + (c.order > 0 ? " RPC" : " LPC");
+  }
   if (c.over == c.under) return "C" + std::to_string(2 * c.over) + (c.order > 0 ? "B" : "F");
   return c.order > 0 ? std::to_string(c.over) + "/" + std::to_string(c.under) + " RC" : std::to_string(c.under) + "/" + std::to_string(c.over) + " LC";
 }
@@ -467,11 +486,21 @@ std::string chart_text(const Pattern& pattern, bool round) {
     }
     row.replace(static_cast<size_t>(c.first_loop), static_cast<size_t>(n), static_cast<size_t>(n), cable_symbol[name]);
   }
+  // A shaped piece's rows, each as wide as its stitches, centred between 'no stitch' cells.
+  if (pattern.whole) {
+    size_t widest = 0;
+    for (const auto& row : grid) widest = std::max(widest, row.size());
+    for (auto& row : grid) {
+      const size_t left = (widest - row.size() + 1) / 2;
+      row = std::string(left, 'x') + row + std::string(widest - row.size() - left, 'x');
+    }
+  }
   std::ostringstream out;
   out << "# name: " << pattern.name << "\n";
   if (!pattern.note.empty()) out << "# source: " << pattern.note << "\n";
   out << "# the fabric from the right side, row 1 at the bottom (patterns/FORMAT.md, \"Charts\"); written by skein\n";
   out << (round ? "format chart round" : "format chart") << "\n";
+  if (pattern.whole) out << "cast on " << row_stitches(pattern.rows.front(), false) << " sts\n";
   for (const auto& c : pattern.palette)
     out << "colour " << c.name << (c.alias.empty() ? "" : " (" + c.alias + ")") << ": " << (c.description.empty() ? "" : c.description + " ") << colour_code(c.srgb) << "\n";
   for (const auto& [symbol, meaning] : kWrittenKeys)
@@ -501,14 +530,13 @@ bool same_stitches(const Pattern& a, const Pattern& b) {
   const auto order = [](const PatternCable& x, const PatternCable& y) { return std::tie(x.row, x.first_loop) < std::tie(y.row, y.first_loop); };
   std::sort(ca.begin(), ca.end(), order);
   std::sort(cb.begin(), cb.end(), order);
-  return a.rows == b.rows && ca == cb && a.palette == b.palette && a.colours == b.colours;
+  return a.rows == b.rows && ca == cb && a.palette == b.palette && a.colours == b.colours && a.whole == b.whole;
 }
 
 }  // namespace
 
 std::string write_chart_pattern(const Pattern& pattern) {
   if (pattern.format == PatternFormat::Woven) throw Error("", "chart", "a woven pattern has no knitting chart");
-  if (pattern.whole) throw Error("", "chart", "a shaped piece (rows of their own widths) has no chart yet: charts hold repeats");
   // Flat (wrong-side rows read with their wrong-side stitches) where that reads back as the same stitches; else
   // read from the right side on every row: lace pairs and cables have models on right-side rows only.
   std::string why;
@@ -525,12 +553,12 @@ std::string write_chart_pattern(const Pattern& pattern) {
 }
 
 std::string write_written_pattern(const Pattern& pattern) {
-  if (pattern.whole) throw Error("", "written instructions", "a shaped piece (rows of their own widths) is not written out yet: skein writes repeats");
   const std::string chart = write_chart_pattern(pattern);
   ChartReading reading = read_chart(chart, "chart");
   // As books write them: runs of plain knits and purls counted (k, k, k → k3).
   static const std::regex prefix(R"(^((?:Row|Rnd) \d+(?: \([RW]S\))?: ))");
-  for (auto& m : reading.made) {
+  for (size_t r = 0; r < reading.made.size(); ++r) {
+    MadeRow& m = reading.made[r];
     std::smatch head;
     std::regex_search(m.text, head, prefix);
     std::vector<std::string> items;
@@ -554,7 +582,12 @@ std::string write_written_pattern(const Pattern& pattern) {
       i += run;
     }
     m.text = text + ".";
+    // A shaped piece's rows that change the count say so, as books do: "K1, kfb, k2. (5 sts)".
+    const int made = row_stitches(pattern.rows[r], true);
+    if (pattern.whole && made != row_stitches(pattern.rows[r], false)) m.text += " (" + std::to_string(made) + " sts)";
   }
+  for (auto& c : reading.comments)  // the chart's "cast on 12 sts" as books write it
+    if (c.rfind("cast on ", 0) == 0) c = "Cast on " + c.substr(8) + ".";
   reading.comments.push_back("# written instructions, by skein (patterns/FORMAT.md)");
   const std::string out = written_text(reading);
   if (!same_stitches(parse_written_pattern(out, "written instructions"), pattern))
