@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "render/sketch.hpp"
@@ -12,7 +13,7 @@ namespace skein::render {
 namespace {
 
 const Eigen::Vector3f kInk(0.08f, 0.08f, 0.1f), kGrid(0.6f, 0.6f, 0.62f), kPaper(1, 1, 1), kNoSymbol(0.78f, 0.78f, 0.8f),
-    kCable(0.1f, 0.35f, 0.6f), kNumber(0.3f, 0.3f, 0.55f);
+    kCable(0.1f, 0.35f, 0.6f), kNumber(0.3f, 0.3f, 0.55f), kNoStitch(0.55f, 0.55f, 0.58f);
 
 /// The symbol of one stitch in the cell whose lower left corner is (x, y): `glyph` is k p y / \ ^ v x q.
 void draw_glyph(Sketch& s, char glyph, double x, double y) {
@@ -24,6 +25,19 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
     case 'y': s.ring(c, 0.28, w, kInk); break;
     case '/': s.stroke({x + 0.2, y + 0.15}, {x + 0.8, y + 0.85}, w, kInk); break;
     case '\\': s.stroke({x + 0.2, y + 0.85}, {x + 0.8, y + 0.15}, w, kInk); break;
+    case '(':  // ssp: ssk's lean and a purl's dot
+    case ')':  // p2tog
+      draw_glyph(s, glyph == '(' ? '\\' : '/', x, y);
+      s.dot({x + 0.5, y + 0.22}, 0.09, kInk);
+      break;
+    case '{':  // k3tog: three strands meeting at the top right
+      s.stroke({x + 0.2, y + 0.15}, {x + 0.8, y + 0.85}, w, kInk);
+      s.stroke({x + 0.55, y + 0.15}, {x + 0.8, y + 0.85}, w, kInk);
+      break;
+    case '}':  // sssk: at the top left
+      s.stroke({x + 0.2, y + 0.85}, {x + 0.8, y + 0.15}, w, kInk);
+      s.stroke({x + 0.2, y + 0.85}, {x + 0.45, y + 0.15}, w, kInk);
+      break;
     case '^':
       s.stroke({x + 0.2, y + 0.2}, {x + 0.5, y + 0.8}, w, kInk);
       s.stroke({x + 0.5, y + 0.8}, {x + 0.8, y + 0.2}, w, kInk);
@@ -46,13 +60,16 @@ void draw_glyph(Sketch& s, char glyph, double x, double y) {
 std::string glyphs_of(const std::string& type, int cells) {
   if (type == "ys") return "y\\";   // a yarn-over, then ssk (stitches/ys.stitch)
   if (type == "2u") return "/y";    // k2tog, then a yarn-over
+  if (type == "ysp") return "y(";   // garter lace from the front: a yarn-over, then ssp (stitches/ysp.stitch)
+  if (type == "2up") return ")y";   // p2tog, then a yarn-over
   if (type == "y3y") return "y^y";  // a yarn-over, sk2p, a yarn-over
   if (type == "s" || type == "sk") return "v";
   if (type == "x" || type == "q") return type;
   if (type.size() >= 4 && type[0] == 'd' && std::isdigit(static_cast<unsigned char>(type[1]))) {
     // Decreases: the loop stacked nearest the new one says the lean (d12k: k2tog, /; d21k: ssk, \).
     const std::string digits = type.substr(1, type.size() - 2);
-    const char lean = digits.front() == '1' ? '/' : digits.back() == '1' ? '\\' : '^';
+    const bool three = digits.size() == 3;  // k3tog, sssk: drawn with the third strand joining the lean
+    const char lean = digits.front() == '1' ? (three ? '{' : '/') : digits.back() == '1' ? (three ? '}' : '\\') : '^';
     return std::string(1, lean) + (type.back() == 'p' ? "p" : "");
   }
   // k p y, their twisted tops (k+1, p-1 ...) and increases into several (kp, kyk, kfb's xk and pq ...): one letter a cell.
@@ -67,13 +84,23 @@ std::string glyphs_of(const std::string& type, int cells) {
 
 Image draw_chart(const mesh::Pattern& pattern, int cell) {
   if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "chart", "a woven pattern has no knitting chart: draw its yarn with --png");
-  if (pattern.whole) throw Error("", "chart", "a shaped piece (rows of their own widths) has no chart yet: draw its yarn with --png");
   if (cell < 8 || cell > 200) throw Error("", "chart", "cells of 8 to 200 pixels, found " + std::to_string(cell));
   Sketch s;
-  int width = 0;
   const int rows = pattern.height();
+  // A shaped piece's rows are as wide as their stitches: centred, as its stitch mesh lays them out, between
+  // grey 'no stitch' cells.
+  std::vector<int> row_cells(static_cast<size_t>(rows), 0);
+  for (int r = 0; r < rows; ++r)
+    for (const auto& type : pattern.rows[r]) {
+      const auto* t = mesh::find_stitch_type(type);
+      row_cells[static_cast<size_t>(r)] += t ? t->top : 1;
+    }
+  const int width = rows > 0 ? *std::max_element(row_cells.begin(), row_cells.end()) : 0;
   for (int r = 0; r < rows; ++r) {
-    int x = 0;
+    const int left = (width - row_cells[static_cast<size_t>(r)] + 1) / 2;
+    for (int c = 0; c < width; ++c)
+      if (c < left || c >= left + row_cells[static_cast<size_t>(r)]) s.box(c, r, c + 1, r + 1, kNoStitch, 0.02);
+    int x = left;
     for (const auto& type : pattern.rows[r]) {
       const auto* t = mesh::find_stitch_type(type);
       const int cells = t ? t->top : 1;
@@ -85,10 +112,16 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
         s.dot({x + 0.5, r + 0.22}, 0.09, kInk);
       } else {
         for (int k = 0; k < cells && k < static_cast<int>(glyphs.size()); ++k) draw_glyph(s, glyphs[k], x + k, r);
+        if (t && t->bottom == 1 && cells > 1 && type.find_first_of("kpxq") != std::string::npos &&
+            type.find_first_not_of("kpyxq") == std::string::npos && glyphs.find('y') == std::string::npos) {
+          // Stitches worked into one (kfb, (k1, p1, k1) in next st): a bracket under their cells joins them.
+          s.stroke({x + 0.15, r + 0.1}, {x + cells - 0.15, r + 0.1}, 0.06, kInk);
+          s.stroke({x + 0.15, r + 0.1}, {x + 0.15, r + 0.3}, 0.06, kInk);
+          s.stroke({x + cells - 0.15, r + 0.1}, {x + cells - 0.15, r + 0.3}, 0.06, kInk);
+        }
       }
       x += cells;
     }
-    width = std::max(width, x);
   }
   // Cables over their cells: the strand in front whole, the one behind broken where it passes.
   for (const auto& cable : pattern.cables) {

@@ -1046,9 +1046,9 @@ TEST(Cli, PatternWritesItselfAsAChartAndAsWrittenInstructions) {
   EXPECT_EQ(slurp(dir / "a.bcc"), slurp(dir / "b.bcc"));
   EXPECT_EQ(slurp(dir / "w.bcc"), slurp(dir / "b.bcc"));
   // A stitch no chart can say is refused naming the file, the row and the stitch, and nothing is written.
-  r = run_skein("pattern " + patterns + "/eyelet-lace.knit --write-chart " + (dir / "e.txt").string());
+  r = run_skein("pattern " + patterns + "/twisted-rib.knit --write-chart " + (dir / "e.txt").string());
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.output.find("eyelet-lace.knit: row 2, stitch 1: stitch type 'kyk' has no chart symbol yet"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("twisted-rib.knit: row 1, stitch 1: stitch type 'k+1' has no chart symbol yet"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "e.txt"));
   // Yarn outputs still need -o.
   r = run_skein("pattern " + patterns + "/seed.knit --relax --write-chart " + (dir / "s.txt").string());

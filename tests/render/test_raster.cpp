@@ -87,6 +87,29 @@ TEST(Chart, SymbolsForWhatThePatternHoldsAndNoneForPlainKnit) {
   EXPECT_THROW(render::draw_chart(mesh::parse_pattern("format woven\n1 0\n0 1\n", "w.weave")), Error);
 }
 
+TEST(Chart, AShapedPieceCentresItsRowsBetweenGreyNoStitchCellsAndBracketsIncreasesIntoOne) {
+  // Cast on 2, kfb twice (4 sts), purl back: the first row's cells stand between grey 'no stitch' cells.
+  const auto count_grey = [](const render::Image& img) {
+    long grey = 0;
+    for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) grey += img.rgb[i] > 150 && img.rgb[i] < 215 && std::abs(img.rgb[i] - img.rgb[i + 2]) < 12;
+    return grey;
+  };  // the grid's lines are grey too: compare charts of one size
+  const auto piece = mesh::parse_pattern("Cast on 2 sts.\nRow 1 (RS): Kfb, kfb. (4 sts)\nRow 2: Purl.\n", "s.txt");
+  ASSERT_TRUE(piece.whole);
+  const auto square = mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): Knit.\nRow 2: Purl.\n", "q.txt");
+  const long grid = count_grey(render::draw_chart(square, 20));
+  EXPECT_LT(count_grey(render::draw_chart(piece, 20)), grid + 60);  // both rows hold 4 stitches: kfb makes two
+  const auto wedge = mesh::parse_pattern("Cast on 2 sts.\nRow 1 (RS): K1, kfb. (3 sts)\nRow 2: Kfb, k2. (4 sts)\n", "w.txt");
+  EXPECT_GT(count_grey(render::draw_chart(wedge, 20)), grid + 200);  // row 1's 3 cells beside a grey one
+  // The bracket under kfb's two cells (a crossed knit and a knit from one stitch) is ink that a k1 tbl and a k1
+  // from two stitches do not have.
+  const auto kfb = mesh::parse_pattern("Cast on 1 sts.\nRow 1 (RS): Kfb. (2 sts)\nRow 2: Purl.\n", "k.txt");
+  const auto two = mesh::parse_pattern("Cast on 2 sts.\nRow 1 (RS): K1, k1 tbl.\nRow 2: Purl.\n", "t.txt");
+  EXPECT_EQ(kfb.rows[0], (std::vector<std::string>{"xk"}));
+  EXPECT_EQ(two.rows[0], (std::vector<std::string>{"x", "k"}));
+  EXPECT_GT(ink_and_cable(render::draw_chart(kfb, 20)).first, ink_and_cable(render::draw_chart(two, 20)).first + 20);
+}
+
 TEST(Chart, EveryRowIsNumberedAtTheRight) {
   // The numbers' slate blue, right of the grid: a chart of 12 rows prints 1 to 12 (15 digits), one of 1 row "1".
   const auto numbered = [](int rows) {
