@@ -356,7 +356,6 @@ private:
         // T3F: sl 2 to cn, hold in front, p1, k2 from cn). CnB and CnF cross half over half; Tn crosses n - 1 knits
         // over one purl (T4: two over two); A/B RC, LC, RPC, LPC (RT, LT, ...) cross A stitches over B.
         m_pos += static_cast<size_t>(m.length(0));
-        if (!m_rs) fail(at, "cables on wrong-side rows have no model yet: cross them on right-side rows");
         int front = 0, behind = 0;  // the stitches that travel in front, and those they cross
         bool right = false, purl_behind = false;
         if (m.str(0)[0] == 'c' || m.str(0)[0] == 't') {
@@ -375,6 +374,12 @@ private:
           purl_behind = m[4].length() > 0;
         }
         if (front < 1 || front > 3 || behind < 1 || behind > 3) fail(at, "'" + m.str(0) + "': cables cross 1 to 3 stitches over 1 to 3");
+        // On a wrong-side row the cable is worked in purl, so that its stitches are knits from the front, as cable
+        // patterns cross them on such rows. Held at the back of the work (the front of the fabric) the stitches
+        // slipped first, the front's leftmost ones, travel right in front: a CnB looks from the front as a
+        // right-side CnB does, and the same for every other cable. Travelling stitches would put a purl in front.
+        if (!m_rs && purl_behind)
+          fail(at, "travelling stitches on wrong-side rows have no model yet: cross them on right-side rows (a cable of knits, worked in purl, crosses on either side)");
         // Seen from the front, the cable's left loops cross right: in front (order 1) when the stitches in front
         // travel right, else behind them (order -1).
         Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);

@@ -157,6 +157,19 @@ TEST(WrittenPattern, RowsRepeatedAsManyTimesMoreAsSaid) {
   }
 }
 
+TEST(WrittenPattern, ACableOnAWrongSideRowCrossesAsTheSameCableOnARightSideRow) {
+  // Worked in purl from the wrong side, its stitches are knits from the front, and the stitches held at the back
+  // of the work (the fabric's front) travel in front: C4B from either side is the same right cross.
+  const auto flat = mesh::parse_pattern("Row 1 (RS): p2, k4, p2.\nRow 2 (WS): k2, C4B, k2.\nRow 3: p2, k4, p2.\nRow 4: k2, p4, k2.\n", "f.txt");
+  const auto round = mesh::parse_pattern("Rnd 1: p2, k4, p2.\nRnd 2: p2, C4B, p2.\nRnd 3: p2, k4, p2.\nRnd 4: p2, k4, p2.\n", "r.txt");
+  EXPECT_EQ(flat.rows, round.rows);
+  ASSERT_EQ(flat.cables.size(), 1u);
+  EXPECT_EQ(flat.cables, round.cables);
+  EXPECT_EQ(flat.cables[0].order, 1);
+  // Written out it crosses on its own row, read back the same.
+  EXPECT_EQ(mesh::parse_pattern(mesh::write_written_pattern(flat), "w.txt").cables, flat.cables);
+}
+
 TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
@@ -166,7 +179,9 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
   EXPECT_EQ(error("Row 1: [k1, p1].\n"), "p.txt: line 1, column 17: expected how many times the group is worked after it ('3 times' or 'x3')");
   EXPECT_EQ(error("Row 1: knit.\nRnd 2: knit.\n"), "p.txt: line 2: mixes rows (worked flat) and rounds (in the round)");
-  EXPECT_EQ(error("Row 1 (RS): knit.\nRow 2: C4F.\n"), "p.txt: line 2, column 8: cables on wrong-side rows have no model yet: cross them on right-side rows");
+  EXPECT_EQ(error("Row 1 (RS): knit.\nRow 2: T3F.\n"),
+            "p.txt: line 2, column 8: travelling stitches on wrong-side rows have no model yet: cross them on right-side rows (a cable of knits, "
+            "worked in purl, crosses on either side)");
   EXPECT_EQ(error("Rnd 1: k1, sk2p, k1.\n"), "p.txt: line 1, column 12: 'sk2p' has a stitch model only between two yarn-overs ('yo, sk2p, yo', Leaf's y3y)");
   EXPECT_EQ(error("Row 1: knit.\nCast on loosely.\n"), "p.txt: line 2: expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
   EXPECT_EQ(error("Rnd 1: k2tog.\nRnd 2: k2.\n"), "p.txt: line 2: this row takes 2 loops but the row below it (line 1) makes 1");
