@@ -686,6 +686,40 @@ Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string
   return p;
 }
 
+/// A stitch pattern's stitch counts against its rows: "Multiple of N sts plus M" (the description's line
+/// `multiple_line`) must be a width every row's repeat fills, its edge stitches included, and a count written after
+/// a row ("(18 sts)") must be one the row makes (its edges plus whole repeats), the same on every row (a stitch
+/// pattern keeps its count) and one the multiple allows.
+void check_counts(const std::vector<WrittenRow>& rows, const std::string& description, int multiple_line, const std::string& source) {
+  static const std::regex multiple_of(R"(\bmultiple\s+of\s+(\d+)(?:\s*(?:sts|stitches))?(?:\s*(?:\+|plus)\s*(\d+))?)", std::regex::icase);
+  std::smatch m;
+  const bool declared = std::regex_search(description, m, multiple_of);
+  const int n = declared ? count_of(m[1].str()) : 0, plus = declared && m[2].matched ? count_of(m[2].str()) : 0;
+  const auto modulo = [](int a, int b) { return ((a % b) + b) % b; };
+  const WrittenRow* first_stated = nullptr;
+  for (const auto& row : rows) {
+    if (!row.starred) continue;  // a fill row takes any width; a row without '*' is one repeat, checked against the others
+    const int w = loops_taken(row.repeat);
+    if (declared && n > 0 && (n % w != 0 || modulo(plus - row.edges(), w) != 0))
+      throw Error(source, "line " + std::to_string(multiple_line),
+                  "says a multiple of " + std::to_string(n) + " sts" + (plus ? " plus " + std::to_string(plus) : "") + ", but the row on line " + std::to_string(row.line) +
+                      " repeats every " + std::to_string(w) + " sts with " + std::to_string(row.edges()) + " edge stitches");
+    if (row.stated <= 0) continue;
+    const std::string at = "line " + std::to_string(row.line) + ", column " + std::to_string(row.stated_column);
+    const int edges_made = loops_made(row.before) + loops_made(row.after), w_made = loops_made(row.repeat);
+    if (row.stated < edges_made + w_made || modulo(row.stated - edges_made, w_made) != 0)
+      throw Error(source, at, "the count written after the row says " + std::to_string(row.stated) + ", but the row makes " + std::to_string(edges_made) + " plus a multiple of " +
+                                  std::to_string(w_made) + " stitches");
+    if (declared && n > 0 && modulo(row.stated - plus, n) != 0)
+      throw Error(source, at, "the count written after the row says " + std::to_string(row.stated) + ", which is not a multiple of " + std::to_string(n) + " sts" +
+                                  (plus ? " plus " + std::to_string(plus) : "") + " (line " + std::to_string(multiple_line) + ")");
+    if (first_stated && first_stated->stated != row.stated)
+      throw Error(source, at, "the count written after the row says " + std::to_string(row.stated) + ", but the one after line " + std::to_string(first_stated->line) + " says " +
+                                  std::to_string(first_stated->stated) + ": a stitch pattern keeps its count from row to row");
+    if (!first_stated) first_stated = &row;
+  }
+}
+
 Pattern parse_written_pattern(const std::string& text, const std::string& source) {
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();
@@ -726,6 +760,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   int line_no = 0;
   bool started = false;
   std::string description;
+  int multiple_line = 0;  // the description's line that says "Multiple of N sts plus M", or 0
   for (std::string raw; std::getline(in, raw);) {
     ++line_no;
     // std::regex recurses per character: a bound on the line keeps a hostile file from the stack's end.
@@ -787,6 +822,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       }
       if (!started) {  // a description before the rows: "Multiple of 4 sts plus 2", "Cast on ..."
         description += (description.empty() ? "" : " ") + line.substr(line.find_first_not_of(" \t"));
+        if (!multiple_line && lower(line).find("multiple of") != std::string::npos) multiple_line = line_no;
         continue;
       }
       throw Error(source, "line " + std::to_string(line_no), "expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
@@ -862,6 +898,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
                   "is " + std::to_string(loops_taken(row.repeat)) + " stitches wide with no '*' repeat, but the pattern's repeat is " + std::to_string(width) +
                       ": write the rows as wide, or mark their repeats with '*...; rep from * to end'");
   }
+  check_counts(rows, description, multiple_line, source);
   const int total = edges + 3 * width;
   std::vector<std::vector<Item>> whole;
   for (const auto& row : rows) {

@@ -157,6 +157,25 @@ TEST(WrittenPattern, RowsRepeatedAsManyTimesMoreAsSaid) {
   }
 }
 
+TEST(WrittenPattern, AStitchPatternsCountsAndMultipleAreCheckedAgainstItsRows) {
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "m.txt"); }); };
+  // As written: k2 edges and a repeat of 4, counts of 4 repeats plus 2 on every row that gives one.
+  const std::string rib = "Multiple of 4 sts plus 2.\nRow 1 (RS): K2, *p2, k2; rep from * to end. (18 sts)\nRow 2: P2, *k2, p2; rep from * to end. (18 sts)\n";
+  EXPECT_EQ(error(rib), "");
+  EXPECT_EQ(error("Multiple of 6 sts plus 2.\nRow 1 (RS): K2, *p2, k2; rep from * to end.\nRow 2: Purl.\n"),
+            "m.txt: line 1: says a multiple of 6 sts plus 2, but the row on line 2 repeats every 4 sts with 2 edge stitches");
+  EXPECT_EQ(error("Multiple of 4 sts plus 1.\nRow 1 (RS): K2, *p2, k2; rep from * to end.\nRow 2: Purl.\n"),
+            "m.txt: line 1: says a multiple of 4 sts plus 1, but the row on line 2 repeats every 4 sts with 2 edge stitches");
+  EXPECT_EQ(error("Row 1 (RS): K2, *p2, k2; rep from * to end. (17 sts)\nRow 2: Purl.\n"),
+            "m.txt: line 1, column 45: the count written after the row says 17, but the row makes 2 plus a multiple of 4 stitches");
+  EXPECT_EQ(error("Multiple of 8 sts plus 2.\nRow 1 (RS): K2, *p2, k2; rep from * to end. (14 sts)\nRow 2: Purl.\n"),
+            "m.txt: line 2, column 45: the count written after the row says 14, which is not a multiple of 8 sts plus 2 (line 1)");
+  EXPECT_EQ(error("Row 1 (RS): K2, *p2, k2; rep from * to end. (18 sts)\nRow 2: P2, *k2, p2; rep from * to end. (22 sts)\n"),
+            "m.txt: line 2, column 40: the count written after the row says 22, but the one after line 1 says 18: a stitch pattern keeps its count from row to row");
+  // A multiple its rows' repeats divide is fine: "multiple of 8" over rows of 4.
+  EXPECT_EQ(error("Multiple of 8 sts + 2.\nRow 1 (RS): K2, *p2, k2; rep from * to end.\nRow 2: Purl.\n"), "");
+}
+
 TEST(WrittenPattern, ACableOnAWrongSideRowCrossesAsTheSameCableOnARightSideRow) {
   // Worked in purl from the wrong side, its stitches are knits from the front, and the stitches held at the back
   // of the work (the fabric's front) travel in front: C4B from either side is the same right cross.
