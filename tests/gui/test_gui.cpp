@@ -653,11 +653,12 @@ private slots:
     QTest::qWait(300);
     QVERIFY(w.job_running());  // paused, not finished
     QVERIFY(!w.document().state().yarn_relaxed);
+    // Watched from the resume on: on a fast machine the swatch may converge before the stop comes.
+    QSignalSpy finished(&w, &MainWindow::job_finished);
     pause->trigger();  // resume
     QTest::qWait(500);
-    QSignalSpy finished(&w, &MainWindow::job_finished);
     action(w, "stop")->trigger();
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.count() > 0 || finished.wait(60000));
     QVERIFY(!w.job_running());
     QVERIFY(w.document().state().yarn_relaxed);
     QVERIFY(action(w, "generate")->isEnabled());
