@@ -996,11 +996,11 @@ int run_command_line(int argc, char** argv) {
         spdlog::info("resuming {} at step {}", ry_resume, state.step);
       }
       ry_options.interrupt = install_interrupt_handlers();
-      const json report = relax_and_write(yarn, system, targets, ry_options, state,
-                                          {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr)),
-                                           ry_extra, 900, own_colours(yarn), 1, ry_radius_out, {}, {}});
-      if (report.at("stopped_by") != "interrupted") write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
-      return exit_status(report);
+      const auto run = relax_and_write(yarn, system, targets, ry_options, state,
+                                       {ry_in, ry_out, ry_backend, ry_report, ry_log, ry_png, ry_views, !quiet && isatty(fileno(stderr)),
+                                        ry_extra, 900, own_colours(yarn), 1, ry_radius_out, {}, {}});
+      if (run.stopped_by != relax::StopReason::Interrupted) write_ids(yarn);  // the relaxed yarn's points are the emitted ones, in order
+      return exit_status(run.stopped_by);
     }
     if (*pat) {
       int across = 0, up = 0;
@@ -1177,11 +1177,11 @@ int run_command_line(int argc, char** argv) {
         }
         if (preview) pat_extra["preview"] = {{"output", pat_preview}, {"png", pat_preview_png}, {"tile", {across, up}}};
         auto state = relax::initial_state(system, pat_options);
-        const json report = relax_and_write(yarn, system, targets, pat_options, state,
-                                            {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
-                                             !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
-                                             compressed ? radius : 0.0, {pattern.width(), pattern.height()}, pat_tubes});
-        if (preview && report.at("stopped_by") != "interrupted") {
+        const auto run = relax_and_write(yarn, system, targets, pat_options, state,
+                                         {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
+                                          !quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
+                                          compressed ? radius : 0.0, {pattern.width(), pattern.height()}, pat_tubes});
+        if (preview && run.stopped_by != relax::StopReason::Interrupted) {
           // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
           auto tiled = pattern.format == mesh::PatternFormat::Woven
                            ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
@@ -1195,8 +1195,8 @@ int run_command_line(int argc, char** argv) {
           spdlog::info("preview: the relaxed repeat tiled {} x {}, {} of {} control points placed from it (the rest, at the borders, follow their yarn){}",
                        across, up, placed.matched, out.points.size(), pat_preview.empty() ? std::string() : "; wrote " + pat_preview);
         }
-        if (report.at("stopped_by") != "interrupted") write_ids(), write_chart();
-        return exit_status(report);
+        if (run.stopped_by != relax::StopReason::Interrupted) write_ids(), write_chart();
+        return exit_status(run.stopped_by);
       }
       write_yarn(yarn, pat_out);
       write_ids();

@@ -323,8 +323,8 @@ const std::atomic<bool>* install_interrupt_handlers() {
 
 int interrupt_signal() { return g_signal; }
 
-json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
-                     const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
+RelaxOutcome relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+                             const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
   std::unique_ptr<std::ofstream> log;
   if (!run.log.empty()) {
     // Going on from a checkpoint, the log keeps its rows up to the checkpoint's step (a killed run may have
@@ -451,13 +451,12 @@ json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& syst
   j.update(run.extra);
   if (!run.report.empty()) write_json(j, run.report);
   if (final && !run.png.empty()) render_yarn_tubes(yarn_out_curves, run.png, run.color, run.views, run.panel);
-  return j;
+  return {std::move(j), report.stopped_by};
 }
 
-int exit_status(const json& report) {
-  const auto stopped_by = report.at("stopped_by").get<std::string>();
-  if (stopped_by == "diverged") return 1;
-  if (stopped_by == "interrupted") return 128 + interrupt_signal();
+int exit_status(relax::StopReason stopped_by) {
+  if (stopped_by == relax::StopReason::Diverged) return 1;
+  if (stopped_by == relax::StopReason::Interrupted) return 128 + interrupt_signal();
   return 0;
 }
 

@@ -159,12 +159,18 @@ struct YarnRunOutputs {
 /// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
 double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat);
 
+/// A yarn run as relax_and_write leaves it: its JSON report (with the residual history) and why it stopped.
+struct RelaxOutcome {
+  json report;
+  relax::StopReason stopped_by = relax::StopReason::Converged;
+};
+
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
 /// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes
-/// only its report (its checkpoint holds the state). Returns the report, with the residual history.
-json relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
-                     const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run);
-/// The exit status for a yarn run's report: 0, 1 when it diverged, 128 + the signal when interrupted.
-int exit_status(const json& report);
+/// only its report (its checkpoint holds the state).
+RelaxOutcome relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+                             const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run);
+/// The exit status of a yarn run that stopped so: 0, 1 when it diverged, 128 + the signal when interrupted.
+int exit_status(relax::StopReason stopped_by);
 
 }  // namespace skein::cli

@@ -499,6 +499,7 @@ int run_job(const Job& job, bool resume, bool progress) {
       return 0;
     }
     int status = 0;
+    relax::StopReason stopped_by = relax::StopReason::Converged;
     run.stage("relax the yarn", [&] {
       auto options = *job.relax_yarn;
       options.interrupt = interrupt;
@@ -535,16 +536,17 @@ int run_job(const Job& job, bool resume, bool progress) {
       outputs.views = "garment";
       outputs.progress = progress;
       if (!job.yarn_weight.empty()) outputs.radius_out = job.yarn_radius;
-      run.report()["relax_yarn"] = relax_and_write(yarn, system, targets, options, state, outputs);
-      status = exit_status(run.report()["relax_yarn"]);
+      auto relaxed = relax_and_write(yarn, system, targets, options, state, outputs);
+      run.report()["relax_yarn"] = std::move(relaxed.report);
+      stopped_by = relaxed.stopped_by;
+      status = exit_status(stopped_by);
     });
-    const auto stopped_by = run.report()["relax_yarn"]["stopped_by"].get<std::string>();
-    if (stopped_by == "interrupted") {
+    if (stopped_by == relax::StopReason::Interrupted) {
       const std::string command = "skein run " + job.file.string() + " -o " + job.output.string() + " --resume";
       spdlog::warn("go on with: {}", command);
       run.report()["resume"] = command;
     }
-    run.finish(stopped_by == "interrupted" ? "interrupted" : stopped_by == "diverged" ? "diverged" : "done");
+    run.finish(stopped_by == relax::StopReason::Interrupted ? "interrupted" : stopped_by == relax::StopReason::Diverged ? "diverged" : "done");
     return status;
   } catch (const std::exception& e) {
     run.report()["error"] = e.what();
