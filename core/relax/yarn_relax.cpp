@@ -223,6 +223,24 @@ YarnForces::YarnForces(const YarnSystem& system, const YarnParams& params)
   m_energy.resize(system.num_segments());
 }
 
+void YarnForces::set_periodic(const PeriodicMap& map) {
+  m_role.clear();
+  m_valid = false;
+  if (map.empty()) return;
+  std::vector<char> real(m_system.num_points(), 1);
+  for (int p : map.virtual_points) real[p] = 0;
+  for (int p : map.frozen) real[p] = 0;
+  // One repeat's segments (yarn_cell.hpp); a map that does not say its virtual points' repeats: those that
+  // start at a real point.
+  const bool cells = map.cells.size() == map.virtual_points.size();
+  m_role = cells ? repeat_segments(m_system, map) : std::vector<char>(m_system.num_segments(), 0);
+  for (int s = 0; s < m_system.num_segments(); ++s) {
+    const auto& sp = m_system.segment_points[s];
+    if (cells ? m_role[s] != 0 : real[sp[1]] != 0) m_role[s] = 2;
+    else if (real[sp[0]] || real[sp[1]] || real[sp[2]] || real[sp[3]]) m_role[s] = 1;
+  }
+}
+
 void YarnForces::set_pairs(const ContactPairs& pairs) {
   m_pairs = &pairs;
   if (m_last_start.size() != pairs.start.size()) {
@@ -271,12 +289,20 @@ double YarnForces::evaluate(const Eigen::Matrix3Xd& points, const std::vector<ch
   long computed = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : computed)
   for (int s = 0; s < segments; ++s) {
+    const char role = m_role.empty() ? 2 : m_role[s];
     bool stale = all || resampled[s] || m_new_partners[s];
     for (int k = pairs.start[s]; k < pairs.start[s + 1] && !stale; ++k) stale = resampled[pairs.partner[k]];
     if (!stale) continue;
-    ++computed;
     V g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
-    m_energy[s] = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
+    if (role == 0) {  // a periodic patch's segment with no real point: no force of it counts
+      m_energy[s] = 0;
+      m_grad[s] = {zero, zero, zero, zero};
+      m_damp[s] = {zero, zero, zero, zero};
+      continue;
+    }
+    ++computed;
+    const double energy = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
+    m_energy[s] = role == 2 ? energy : 0.0;
     for (int k = 0; k < 4; ++k) {
       m_grad[s][k] = g[k];
       m_damp[s][k] = d[k];
@@ -319,6 +345,7 @@ public:
       : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
         m_changed(system.num_points(), 1), m_lbfgs(options.lbfgs_memory), m_periodic(targets.periodic) {
     m_options.validate();
+    m_forces.set_periodic(m_periodic);
     if (m_options.period.free && (m_periodic.virtual_points.empty() || m_periodic.cells.size() != m_periodic.virtual_points.size()))
       throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");
     std::vector<int> groups(system.num_points(), -1);

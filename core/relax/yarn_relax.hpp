@@ -62,6 +62,11 @@ public:
                   const Eigen::Matrix3Xd* velocities = nullptr, Eigen::Matrix3Xd* damping = nullptr);
   /// Segments whose share the last evaluation computed (the others were kept).
   long computed_segments() const { return m_computed; }
+  /// A periodic patch (Leaf §5): only the real points' forces count (the virtual ones copy them), so only the
+  /// segments that hold a real point are computed, and the energy is one repeat's (repeat_segments: each piece
+  /// of the repeat's yarn once, its contacts halved as everywhere), the energy cell_stress gives and the one
+  /// the real points' forces descend. An empty map: every segment, the whole yarn's energy.
+  void set_periodic(const PeriodicMap& map);
 
 private:
   using V = model::Vec3<double>;
@@ -74,6 +79,7 @@ private:
   std::vector<double> m_weight, m_arc;
   std::vector<std::array<V, 4>> m_grad, m_damp;   ///< per segment: gradient and damping on its four points
   std::vector<double> m_energy;                   ///< per segment
+  std::vector<char> m_role;                       ///< per segment of a periodic patch: 0 skipped, 1 computed, 2 computed and counted; empty: all counted
   bool m_valid = false, m_damped = false;
   long m_computed = 0;
 };

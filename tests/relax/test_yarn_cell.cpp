@@ -39,6 +39,30 @@ Patch relaxed_patch(const std::string& text, long steps) {
 
 }  // namespace
 
+TEST(YarnCell, APeriodicPatchsForcesComputeOnlyWhatItsRealPointsNeedAndItsEnergyIsOneRepeats) {
+  for (const char* text : {"format knit\nk\n", "format knit\nk k p p\n", "format knit\np k k k k p\np k k k k p\np cable2x2+ p\n"}) {
+    SCOPED_TRACE(text);
+    auto p = relaxed_patch(text, 40);
+    const YarnParams params;
+    const auto pairs = find_contact_pairs(p.system, p.points, 2 * p.system.radius);
+    YarnForces whole(p.system, params), repeat(p.system, params);
+    whole.set_pairs(pairs);
+    repeat.set_pairs(pairs);
+    repeat.set_periodic(p.patch.map);
+    Eigen::Matrix3Xd g_whole, g_repeat;
+    const double e_whole = whole.evaluate(p.points, nullptr, g_whole);
+    const double e_repeat = repeat.evaluate(p.points, nullptr, g_repeat);
+    EXPECT_LT(repeat.computed_segments(), whole.computed_segments() / 2);  // the virtual rings are most of the patch
+    // The real points' forces bit for bit; the virtual points' are not degrees of freedom.
+    constrain_gradient(p.patch.map, g_whole);
+    constrain_gradient(p.patch.map, g_repeat);
+    EXPECT_EQ(g_repeat, g_whole);
+    // One repeat's energy, the variable-cell relaxation's, against the whole patch's several repeats.
+    EXPECT_NEAR(e_repeat, cell_stress(p.system, params, pairs, p.patch.map, p.points).energy, 1e-9 * e_repeat);
+    EXPECT_GT(e_whole, 4 * e_repeat);
+  }
+}
+
 TEST(YarnCell, ThePeriodDerivativeMatchesFiniteDifferences) {
   for (const char* text : {"format knit\nk\n", "format knit\nk k p p\n", "format knit\np k\nk p\n"}) {
     SCOPED_TRACE(text);
