@@ -438,8 +438,7 @@ public:
         frame_grad = frame->gradient(grad, frame_stress, state.points);
       }
       // L-BFGS after a rollback: shorter moves, lengthening again step by step. No line search and no test of the
-      // energy (as atomistic relaxers do): a periodic patch's energy is not the one its real points' forces
-      // descend (its virtual points' own terms count in it), and testing it stalls the run (docs/yarn-relaxation.md).
+      // energy (as atomistic relaxers do; docs/yarn-relaxation.md).
       if (m_options.method == YarnMethod::Lbfgs) m_lbfgs_trust = std::min(1.0, m_lbfgs_trust * 1.1);
       good_points = state.points;
       good_velocities = state.velocities;
