@@ -517,10 +517,16 @@ std::string chart_text(const Pattern& pattern, bool round) {
     const auto [right, wrong] = into_one_meaning(type);
     out << "key " << symbol << " " << right << " / " << wrong << "\n";
   }
-  const int digits = static_cast<int>(std::to_string(grid.size()).size());
+  // Row numbers as printed charts place them: at the right of rows read from the right (every round, and a flat
+  // chart's right-side rows), at the left of a flat chart's wrong-side rows, read from the left.
+  const size_t digits = std::to_string(grid.size()).size();
+  const std::string margin(round ? 0 : digits + 3, ' ');
   for (size_t r = grid.size(); r-- > 0;) {
-    for (size_t i = 0; i < grid[r].size(); ++i) out << (i ? " " : "") << grid[r][i];
-    out << "   " << std::string(static_cast<size_t>(digits) - std::to_string(r + 1).size(), ' ') << r + 1 << "\n";
+    const std::string number = std::string(digits - std::to_string(r + 1).size(), ' ') + std::to_string(r + 1);
+    std::string cells;
+    for (size_t i = 0; i < grid[r].size(); ++i) cells += (i ? " " : "") + std::string(1, grid[r][i]);
+    if (!round && r % 2 == 1) out << number << "   " << cells << "\n";
+    else out << margin << cells << "   " << number << "\n";
   }
   return out.str();
 }

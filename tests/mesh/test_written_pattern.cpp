@@ -344,9 +344,10 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
     }
   EXPECT_GE(written, 30);
   EXPECT_GT(refused, 0);
-  // As a knitter reads them: a flat chart with its cable key and numbered rows, runs counted in the instructions.
+  // As a knitter reads them: a flat chart with its cable key and numbered rows (wrong-side rows at the left, where
+  // they are read from), runs counted in the instructions.
   const auto cable = bundled("cable-4");
-  EXPECT_NE(mesh::write_chart_pattern(cable).find("format chart\nkey C C4B\n- - . . . . - -   4\n"), std::string::npos) << mesh::write_chart_pattern(cable);
+  EXPECT_NE(mesh::write_chart_pattern(cable).find("format chart\nkey C C4B\n4   - - . . . . - -\n    - - . . . . - -   3\n"), std::string::npos) << mesh::write_chart_pattern(cable);
   EXPECT_NE(mesh::write_written_pattern(cable).find("Row 1 (RS): p2, C4B, p2.\nRow 2 (WS): k2, p4, k2.\n"), std::string::npos)
       << mesh::write_written_pattern(cable);
   // A lace pair on a wrong-side row is worked from that side: "yo, ssp" is ys from the front.
@@ -360,7 +361,7 @@ TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsTha
   EXPECT_NE(mesh::write_written_pattern(kfb).find("Row 2 (WS): kfb, k2tog."), std::string::npos) << mesh::write_written_pattern(kfb);
   const auto trinity = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/trinity.txt");
   EXPECT_NE(mesh::write_written_pattern(trinity).find("Row 2 (WS): (k1, p1, k1) in next st, p3tog."), std::string::npos) << mesh::write_written_pattern(trinity);
-  EXPECT_NE(mesh::write_chart_pattern(trinity).find("key + (p1, k1, p1) in next st / (k1, p1, k1) in next st\n{ + + +   4\n"), std::string::npos)
+  EXPECT_NE(mesh::write_chart_pattern(trinity).find("key + (p1, k1, p1) in next st / (k1, p1, k1) in next st\n4   { + + +\n"), std::string::npos)
       << mesh::write_chart_pattern(trinity);
   // A shaped piece: cast on, every row whole with the counts of the rows that change it; its chart's rows centred
   // between 'no stitch' cells.
