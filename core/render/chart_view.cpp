@@ -136,14 +136,20 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
     s.stroke(mid + 0.22 * along, back_to, 0.14, kCable, 0.04);
     s.stroke(front_from, front_to, 0.22, kCable, 0.05);
   }
-  // Row numbers at the right of each row, as charts print them (row 1 at the bottom).
-  double numbers = 0;
-  for (int r = 0; r < rows; ++r) numbers = std::max(numbers, s.number(r + 1, width + 0.3, r + 0.25, 0.5, kNumber));
+  // Row numbers as charts print them (row 1 at the bottom): at the right of rows read from the right, and, worked
+  // flat, at the left of the wrong-side rows, read from the left.
+  double numbers = 0, left_numbers = 0;
+  for (int r = 0; r < rows; ++r) {
+    const bool wrong_side = pattern.flat && r % 2 == 1;
+    const double digits_width = 0.45 * static_cast<double>(std::to_string(r + 1).size());
+    if (wrong_side) left_numbers = std::max(left_numbers, s.number(r + 1, -0.3 - digits_width, r + 0.25, 0.5, kNumber) + 0.3);
+    else numbers = std::max(numbers, s.number(r + 1, width + 0.3, r + 0.25, 0.5, kNumber));
+  }
   // The grid, and the paper under it with a margin.
   for (int r = 0; r <= rows; ++r) s.box(0, r - 0.015, width, r + 0.015, kGrid, 0.01);
   for (int c = 0; c <= width; ++c) s.box(c - 0.015, 0, c + 0.015, rows, kGrid, 0.01);
-  s.box(-0.3, -0.3, width + 0.5 + numbers, rows + 0.3, kPaper, 0);
-  return draw_flat(s, std::clamp(static_cast<int>(cell * (std::max(width + numbers, static_cast<double>(rows)) + 1)), 64, 4096));
+  s.box(-0.3 - left_numbers, -0.3, width + 0.5 + numbers, rows + 0.3, kPaper, 0);
+  return draw_flat(s, std::clamp(static_cast<int>(cell * (std::max(width + numbers + left_numbers, static_cast<double>(rows)) + 1)), 64, 4096));
 }
 
 }  // namespace skein::render

@@ -45,6 +45,9 @@ struct Pattern {
   /// A shaped piece (knits, issue 26): its rows are the whole fabric, knitted once and not repeated, each as wide
   /// as its stitches (a row takes the loops the row below made; the first row is the cast-on's).
   bool whole = false;
+  /// Knits read from written instructions or a chart worked flat (right- and wrong-side rows); false in the round
+  /// and for `.knit` files, which say only how the fabric looks from the front. Charts number the rows so.
+  bool flat = false;
 
   int width() const;   ///< loops per row (knits) or warp yarns (wovens) in one repeat
   int height() const;  ///< rows or weft yarns in one repeat

@@ -854,6 +854,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   implied_ws(static_cast<int>(rows.size()) + 2);  // a pattern that ends on a right-side row ends with its wrong-side row
   if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
   if (p.note.empty()) p.note = description;
+  p.flat = !round;
 
   // A piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat, and every
   // row written whole, taking the loops the row below made. It is knitted once, as written, shaped or not: `knit`,
