@@ -227,16 +227,14 @@ void YarnForces::set_periodic(const PeriodicMap& map) {
   m_role.clear();
   m_valid = false;
   if (map.empty()) return;
+  if (map.cells.size() != map.virtual_points.size()) throw Error("", "periodic patch", "the periodic map does not say each virtual point's repeat");
   std::vector<char> real(m_system.num_points(), 1);
   for (int p : map.virtual_points) real[p] = 0;
   for (int p : map.frozen) real[p] = 0;
-  // One repeat's segments (yarn_cell.hpp); a map that does not say its virtual points' repeats: those that
-  // start at a real point.
-  const bool cells = map.cells.size() == map.virtual_points.size();
-  m_role = cells ? repeat_segments(m_system, map) : std::vector<char>(m_system.num_segments(), 0);
+  m_role = repeat_segments(m_system, map);  // one repeat's segments (yarn_cell.hpp)
   for (int s = 0; s < m_system.num_segments(); ++s) {
     const auto& sp = m_system.segment_points[s];
-    if (cells ? m_role[s] != 0 : real[sp[1]] != 0) m_role[s] = 2;
+    if (m_role[s]) m_role[s] = 2;
     else if (real[sp[0]] || real[sp[1]] || real[sp[2]] || real[sp[3]]) m_role[s] = 1;
   }
 }
@@ -290,17 +288,15 @@ double YarnForces::evaluate(const Eigen::Matrix3Xd& points, const std::vector<ch
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : computed)
   for (int s = 0; s < segments; ++s) {
     const char role = m_role.empty() ? 2 : m_role[s];
+    if (role == 0) {  // a periodic patch's segment with no real point: no force of it counts, ever
+      if (all) m_energy[s] = 0, m_grad[s] = {zero, zero, zero, zero}, m_damp[s] = {zero, zero, zero, zero};
+      continue;
+    }
     bool stale = all || resampled[s] || m_new_partners[s];
     for (int k = pairs.start[s]; k < pairs.start[s + 1] && !stale; ++k) stale = resampled[pairs.partner[k]];
     if (!stale) continue;
-    V g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
-    if (role == 0) {  // a periodic patch's segment with no real point: no force of it counts
-      m_energy[s] = 0;
-      m_grad[s] = {zero, zero, zero, zero};
-      m_damp[s] = {zero, zero, zero, zero};
-      continue;
-    }
     ++computed;
+    V g[4] = {zero, zero, zero, zero}, d[4] = {zero, zero, zero, zero};
     const double energy = model::segment_forces(view, sample_view, pair_view, intrinsic, contact, s, point, g, d);
     m_energy[s] = role == 2 ? energy : 0.0;
     for (int k = 0; k < 4; ++k) {

@@ -90,11 +90,7 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
   // A shaped piece's rows are as wide as their stitches: centred, as its stitch mesh lays them out, between
   // grey 'no stitch' cells.
   std::vector<int> row_cells(static_cast<size_t>(rows), 0);
-  for (int r = 0; r < rows; ++r)
-    for (const auto& type : pattern.rows[r]) {
-      const auto* t = mesh::find_stitch_type(type);
-      row_cells[static_cast<size_t>(r)] += t ? t->top : 1;
-    }
+  for (int r = 0; r < rows; ++r) row_cells[static_cast<size_t>(r)] = mesh::loops_made(pattern.rows[r]);
   const int width = rows > 0 ? *std::max_element(row_cells.begin(), row_cells.end()) : 0;
   for (int r = 0; r < rows; ++r) {
     const int left = (width - row_cells[static_cast<size_t>(r)] + 1) / 2;
@@ -112,8 +108,7 @@ Image draw_chart(const mesh::Pattern& pattern, int cell) {
         s.dot({x + 0.5, r + 0.22}, 0.09, kInk);
       } else {
         for (int k = 0; k < cells && k < static_cast<int>(glyphs.size()); ++k) draw_glyph(s, glyphs[k], x + k, r);
-        if (t && t->bottom == 1 && cells > 1 && type.find_first_of("kpxq") != std::string::npos &&
-            type.find_first_not_of("kpyxq") == std::string::npos && glyphs.find('y') == std::string::npos) {
+        if (t && t->bottom == 1 && cells > 1 && glyphs.find_first_not_of("kpxq") == std::string::npos) {
           // Stitches worked into one (kfb, (k1, p1, k1) in next st): a bracket under their cells joins them.
           s.stroke({x + 0.15, r + 0.1}, {x + cells - 0.15, r + 0.1}, 0.06, kInk);
           s.stroke({x + 0.15, r + 0.1}, {x + 0.15, r + 0.3}, 0.06, kInk);

@@ -348,13 +348,6 @@ std::pair<std::string, std::string> into_one_meaning(const std::string& type) {
   return {group(true), group(false)};
 }
 
-/// The stitches a row takes from the row below (`made` false) or leaves on the needle (true).
-int row_stitches(const std::vector<std::string>& row, bool made) {
-  int n = 0;
-  for (const auto& type : row) n += made ? find_stitch_type(type)->top : find_stitch_type(type)->bottom;
-  return n;
-}
-
 /// The symbols write_chart draws increases worked into one stitch with, one a kind, each keyed.
 const std::string kIntoOneSymbols = "+*=&$@?~;:";
 
@@ -500,7 +493,7 @@ std::string chart_text(const Pattern& pattern, bool round) {
   if (!pattern.note.empty()) out << "# source: " << pattern.note << "\n";
   out << "# the fabric from the right side, row 1 at the bottom (patterns/FORMAT.md, \"Charts\"); written by skein\n";
   out << (round ? "format chart round" : "format chart") << "\n";
-  if (pattern.whole) out << "cast on " << row_stitches(pattern.rows.front(), false) << " sts\n";
+  if (pattern.whole) out << "cast on " << loops_taken(pattern.rows.front()) << " sts\n";
   for (const auto& c : pattern.palette)
     out << "colour " << c.name << (c.alias.empty() ? "" : " (" + c.alias + ")") << ": " << (c.description.empty() ? "" : c.description + " ") << colour_code(c.srgb) << "\n";
   for (const auto& [symbol, meaning] : kWrittenKeys)
@@ -589,8 +582,8 @@ std::string write_written_pattern(const Pattern& pattern) {
     }
     m.text = text + ".";
     // A shaped piece's rows that change the count say so, as books do: "K1, kfb, k2. (5 sts)".
-    const int made = row_stitches(pattern.rows[r], true);
-    if (pattern.whole && made != row_stitches(pattern.rows[r], false)) m.text += " (" + std::to_string(made) + " sts)";
+    const int made = loops_made(pattern.rows[r]);
+    if (pattern.whole && made != loops_taken(pattern.rows[r])) m.text += " (" + std::to_string(made) + " sts)";
   }
   for (auto& c : reading.comments)  // the chart's "cast on 12 sts" as books write it
     if (c.rfind("cast on ", 0) == 0) c = "Cast on " + c.substr(8) + ".";

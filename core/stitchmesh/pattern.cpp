@@ -39,6 +39,9 @@ std::string known_types() {
   return names;
 }
 
+
+}  // namespace
+
 int loops_taken(const std::vector<std::string>& row) {
   int n = 0;
   for (const auto& t : row) n += find_stitch_type(t)->bottom;
@@ -49,8 +52,6 @@ int loops_made(const std::vector<std::string>& row) {
   for (const auto& t : row) n += find_stitch_type(t)->top;
   return n;
 }
-
-}  // namespace
 
 int Pattern::width() const {
   if (format == PatternFormat::Woven) return over.empty() ? 0 : static_cast<int>(over[0].size());

@@ -54,6 +54,10 @@ struct Pattern {
   int stitches() const; ///< knits: faces in one repeat (pattern_stitch_mesh)
 };
 
+/// Knits: the loops a row of stitch types takes from the row below, and the loops it makes for the row above.
+int loops_taken(const std::vector<std::string>& row);
+int loops_made(const std::vector<std::string>& row);
+
 /// Reads a pattern file; throws skein::Error naming the file, the line and column and the rule broken
 /// (unknown token with the known names, ragged woven rows, rows whose loop counts do not connect, also
 /// across the repeat, an empty pattern).
