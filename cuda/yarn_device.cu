@@ -27,7 +27,6 @@ using V = model::Vec3<float>;
 constexpr int kThreads = 256;
 constexpr int kReduceBlocks = 256;  ///< fixed, so that every sum adds the same partials in the same order
 constexpr int kMaxBatch = 64;       ///< steps between read-backs, at most
-constexpr int kHoldRounds = 3;      ///< guard rounds that hold points, after the halvings; then everything holds
 
 int blocks_for(long n) { return static_cast<int>(std::max<long>(1, (n + kThreads - 1) / kThreads)); }
 
@@ -478,17 +477,18 @@ __global__ void k_guard_decide(Dev d, int round) {
   Scalars& sc = *d.sc;
   if (sc.halt || sc.guard_done) return;
   sc.guard_mode = kNone;
-  if (sc.hits == 0) {
+  const model::GuardRound action = model::guard_round(round, sc.hits, d.max_halvings);  // the CPU guard's policy
+  if (action == model::GuardRound::Done) {
     sc.guard_done = 1;
     return;
   }
   sc.counters[kFinestHits] += sc.hits;
   sc.hits = 0;
-  if (round < d.max_halvings) {
+  if (action == model::GuardRound::Halve) {
     ++sc.counters[kHalvings];
     sc.least *= 0.5;
     sc.guard_mode = kHalve;
-  } else if (round < d.max_halvings + kHoldRounds) {
+  } else if (action == model::GuardRound::Hold) {
     sc.guard_mode = kHold;
   } else {
     sc.hold_all = 1;  // k_commit holds every point for this step
@@ -557,10 +557,11 @@ __global__ void k_commit(Dev d) {
   if (sc.hold_all || sc.scale * sc.least < 1) d.v.store(i, delta * static_cast<float>(1.0 / sc.dt));
 }
 
-/// Clean pairs restart their safe bounds from here.
+/// Clean pairs restart their safe bounds from here (none when every point was held: the bounds were measured on
+/// the moves proposed).
 __global__ void k_commit_budgets(Dev d, int capacity) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (d.sc->halt || !d.guard_enabled || !d.safe_bounds || i >= capacity || i >= d.sc->guard_pairs || d.new_budget[i] < 0) return;
+  if (d.sc->halt || d.sc->hold_all || !d.guard_enabled || !d.safe_bounds || i >= capacity || i >= d.sc->guard_pairs || d.new_budget[i] < 0) return;
   d.budget[i] = d.new_budget[i];
   int p[8];
   pair_points(d, i, p);
@@ -850,7 +851,7 @@ struct DeviceYarn::Impl {
     k_guard_begin<<<1, 1, 0, stream>>>(d);
     k_guard_prepare<<<blocks_for(std::max({points, loops, guard_capacity()})), kThreads, 0, stream>>>(d, guard_capacity());
     if (options.guard.enabled)
-      for (int round = 0; round <= options.guard.max_halvings + kHoldRounds; ++round) {
+      for (int round = 0; round <= options.guard.max_halvings + model::kGuardHoldRounds; ++round) {
         k_guard_test<<<gb, kThreads, 0, stream>>>(d);
         k_guard_decide<<<1, 1, 0, stream>>>(d, round);
         k_guard_mark<<<gb, kThreads, 0, stream>>>(d, guard_capacity(), round);

@@ -85,4 +85,18 @@ SKEIN_HD bool pieces_meet(const Vec3<T> a0[4], const Vec3<T> a1[4], const Vec3<T
   return false;
 }
 
+/// What the guard does after a round of tests that left `hits` pairs still meeting at the finest level, the same
+/// on both back-ends (the round loop itself is each back-end's: a loop on the CPU, a captured graph of kernels on
+/// the GPU). First the hit pairs' points halve their moves, `max_halvings` rounds; then those points are held for
+/// the step, kGuardHoldRounds rounds (a held point can leave a neighbour's pair still hit); then, if pairs still
+/// meet, every point is held for the step, which no pair can pass through.
+enum class GuardRound : int { Done = 0, Halve = 1, Hold = 2, HoldAll = 3 };
+constexpr int kGuardHoldRounds = 3;
+SKEIN_HD GuardRound guard_round(int round, long hits, int max_halvings) {
+  if (hits == 0) return GuardRound::Done;
+  if (round < max_halvings) return GuardRound::Halve;
+  if (round < max_halvings + kGuardHoldRounds) return GuardRound::Hold;
+  return GuardRound::HoldAll;
+}
+
 }  // namespace skein::relax::model

@@ -27,11 +27,22 @@ PullThroughGuard::PullThroughGuard(const YarnSystem& system, const GuardOptions&
   if (m_groups.empty()) m_groups.assign(system.num_points(), -1);
 }
 
+void PullThroughGuard::restrict_to(std::vector<char> segments) {
+  if (!segments.empty() && segments.size() != static_cast<size_t>(m_system.num_segments()))
+    throw Error("", "guard", "the segment mask has " + std::to_string(segments.size()) + " entries for " +
+                std::to_string(m_system.num_segments()) + " segments");
+  m_tested = std::move(segments);
+}
+
 void PullThroughGuard::reset(const ContactPairs& pairs) {
   m_pairs.clear();
   for (int a = 0; a + 1 < static_cast<int>(pairs.start.size()); ++a)
-    for (int k = pairs.start[a]; k < pairs.start[a + 1]; ++k)
-      if (pairs.partner[k] > a && !m_system.adjacent(a, pairs.partner[k])) m_pairs.push_back({a, pairs.partner[k]});
+    for (int k = pairs.start[a]; k < pairs.start[a + 1]; ++k) {
+      const int b = pairs.partner[k];
+      if (b <= a || m_system.adjacent(a, b)) continue;
+      if (!m_tested.empty() && !m_tested[a] && !m_tested[b]) continue;
+      m_pairs.push_back({a, b});
+    }
 }
 
 bool PullThroughGuard::pieces_meet(const PairState& pair, const Eigen::Matrix3Xd& points, const Eigen::Matrix3Xd& delta, double& gap,
@@ -103,8 +114,16 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
     m_counters.pairs_tested += tested;
     m_counters.pairs_skipped += skipped;
     m_counters.sphere_tests += tests;
-    if (hits == 0) break;
+    const model::GuardRound action = model::guard_round(round, hits, m_options.max_halvings);
+    if (action == model::GuardRound::Done) break;
     m_counters.finest_hits += hits;
+    if (action == model::GuardRound::HoldAll) {
+      for (int p = 0; p < m_system.num_points(); ++p)
+        if (delta.col(p).squaredNorm() > 0) ++m_counters.held_points;
+      delta.setZero();
+      std::fill(new_budget.begin(), new_budget.end(), -1.0);
+      break;
+    }
     // The points of the pairs still hit, with their groups (a boundary loop's points move as one).
     std::vector<char> mark(m_system.num_points(), 0), mark_group;
     for (int i = 0; i < n; ++i)
@@ -118,7 +137,7 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
               mark_group[m_groups[p]] = 1;
             }
           }
-    const bool halve = round < m_options.max_halvings;
+    const bool halve = action == model::GuardRound::Halve;
     if (halve) {
       ++m_counters.halvings;
       least = std::min(least, std::ldexp(1.0, -(round + 1)));
@@ -130,7 +149,7 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
         // Each point moves on a straight line, so a halved move is the first half of the same path.
         delta.col(p) *= 0.5;
       } else {
-        // Out of halvings: the point stays put for this step.
+        // Out of halvings (GuardRound::Hold): the point stays put for this step.
         if (delta.col(p).squaredNorm() > 0) ++m_counters.held_points;
         delta.col(p).setZero();
       }

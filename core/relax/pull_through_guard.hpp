@@ -46,6 +46,9 @@ public:
   /// A new pair set (after the contact cache is rebuilt): every pair is tested again. Pairs of one piece of
   /// yarn (YarnSystem::adjacent) are left out.
   void reset(const ContactPairs& pairs);
+  /// From the next reset on, only pairs with at least one segment marked here are tested (a periodic patch's
+  /// periodic_tested_segments: one copy of each pair); empty: every pair.
+  void restrict_to(std::vector<char> segments);
   /// Makes `delta` [mm] safe to add to `points` in place; returns at most the smallest factor a point's move
   /// was scaled by (1 when untouched, 0 when only held points would have moved).
   double accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd& delta);
@@ -67,6 +70,7 @@ private:
   const YarnSystem& m_system;
   GuardOptions m_options;
   std::vector<int> m_groups;
+  std::vector<char> m_tested;    ///< per segment: pairs with none of their two marked are left out; empty: none left out
   std::vector<PairState> m_pairs;
   std::vector<double> m_travel;  ///< per point: total distance moved [mm]
   GuardCounters m_counters;

@@ -218,6 +218,13 @@ TopologyAuditor::TopologyAuditor(const YarnSystem& system, double tolerance) : m
   if (!(tolerance > 0) || !std::isfinite(tolerance)) throw Error("", "audit tolerance", "must be positive, found " + std::to_string(tolerance));
 }
 
+void TopologyAuditor::restrict_to(std::vector<char> segments) {
+  if (!segments.empty() && segments.size() != static_cast<size_t>(m_system.num_segments()))
+    throw Error("", "audit", "the segment mask has " + std::to_string(segments.size()) + " entries for " +
+                std::to_string(m_system.num_segments()) + " segments");
+  m_tested = std::move(segments);
+}
+
 std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const {
   const int segments = m_system.num_segments();
   // Each segment's Bezier control points in both states (Catmull-Rom to Bezier, written out here so that the
@@ -247,11 +254,17 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
   // Cells three times as wide as the boxes are on average: a few long segments do not make every cell crowded.
   const BoxGrid grid(std::move(boxes), 3 * mean_width);
   std::vector<std::vector<Crossing>> found(segments > 0 ? omp_get_max_threads() : 0);
+  const bool restricted = !m_tested.empty();
 #pragma omp parallel for schedule(dynamic, 64)
   for (int a = 0; a < segments; ++a) {
-    if (!moving[a]) continue;
-    // Each pair once: two moving segments from the first, a moving and a still one from the moving one.
-    const auto want = [&](int b) { return b != a && !(moving[b] && b < a); };
+    // Each pair once: from its moving segment, the lower of two moving ones; restricted, from its marked segment
+    // (the lower of two marked ones) when either moves.
+    if (restricted ? !m_tested[a] : !moving[a]) continue;
+    const auto want = [&](int b) {
+      if (b == a) return false;
+      if (!restricted) return !(moving[b] && b < a);
+      return (moving[a] || moving[b]) && !(m_tested[b] && b < a);
+    };
     grid.overlapping(grid.box(a), want, [&](int b) {
       if (m_system.adjacent(a, b)) return;
       const Vector3d* pa = bezier[a].data();

@@ -31,10 +31,15 @@ public:
   /// Centreline crossings during the straight-line move from `before` to `after`, of segments that are not one
   /// piece of yarn (YarnSystem::adjacent); pairs of segments that both stay put are not tested.
   std::vector<Crossing> crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
+  /// Only pairs with at least one segment marked here are tested (a periodic patch's periodic_tested_segments:
+  /// the patch's other segments are translated copies that move alike, so one copy of each pair is tested);
+  /// empty: every pair.
+  void restrict_to(std::vector<char> segments);
 
 private:
   const YarnSystem& m_system;
   double m_tolerance;  ///< [mm]
+  std::vector<char> m_tested;  ///< per segment, or empty (restrict_to)
 };
 
 /// The most pieces the exact test splits one pair into before it counts the pair as meeting (unresolved).

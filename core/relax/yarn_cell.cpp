@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -38,41 +39,72 @@ Eigen::Matrix2d CellStress::mean_stress(const Eigen::Vector3d& period_x, const E
   return virial.topLeftCorner<2, 2>() / area;
 }
 
-std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map) {
+namespace {
+
+/// Each segment as a piece of yarn wherever it is copied: the real points of its four and their repeats from the
+/// first's, the same either way along the yarn (two segments with one key are translated copies); no key for
+/// a segment next to a frozen point, which copies nothing. `real`: per point, whether it is a real one.
+struct SegmentKeys {
+  using Key = std::array<int, 10>;
+  std::vector<std::optional<Key>> keys;
+  std::vector<char> real;
+};
+
+SegmentKeys segment_keys(const YarnSystem& system, const PeriodicMap& map) {
   const int n = system.num_points();
   std::vector<int> root(n);
   std::vector<Eigen::Vector2i> cell(n, Eigen::Vector2i::Zero());
   std::iota(root.begin(), root.end(), 0);
   for (size_t i = 0; i < map.virtual_points.size(); ++i) root[map.virtual_points[i]] = map.real_points[i], cell[map.virtual_points[i]] = map.cells[i];
   for (int p : map.frozen) root[p] = -1;
-  std::vector<char> real(n, 1);
-  for (int p : map.virtual_points) real[p] = 0;
-  for (int p : map.frozen) real[p] = 0;
-  // A segment as the real points of its four and their repeats from the first's, the same either way along the yarn.
-  using Key = std::array<int, 10>;
-  const auto key_of = [&](const std::array<int, 4>& sp) {
-    Key forward, backward;
+  SegmentKeys out;
+  out.real.assign(n, 1);
+  for (int p : map.virtual_points) out.real[p] = 0;
+  for (int p : map.frozen) out.real[p] = 0;
+  out.keys.resize(system.num_segments());
+  for (int s = 0; s < system.num_segments(); ++s) {
+    const auto& sp = system.segment_points[s];
+    if (std::any_of(sp.begin(), sp.end(), [&](int p) { return root[p] < 0; })) continue;
+    SegmentKeys::Key forward, backward;
     for (int k = 0; k < 4; ++k) {
       forward[k] = root[sp[k]], backward[k] = root[sp[3 - k]];
       if (k == 0) continue;
       const Eigen::Vector2i f = cell[sp[k]] - cell[sp[0]], b = cell[sp[3 - k]] - cell[sp[3]];
       forward[2 + 2 * k] = f.x(), forward[3 + 2 * k] = f.y(), backward[2 + 2 * k] = b.x(), backward[3 + 2 * k] = b.y();
     }
-    return std::min(forward, backward);
-  };
-  std::set<Key> seen;
-  std::vector<char> out(system.num_segments(), 0);
-  for (int s = 0; s < system.num_segments(); ++s) {
-    std::array<int, 4> sp;
-    for (int k = 0; k < 4; ++k) sp[k] = system.segment_points[s][k];
-    if (!real[sp[1]] && !real[sp[2]]) continue;
-    if (std::any_of(sp.begin(), sp.end(), [&](int p) { return root[p] < 0; })) {
-      out[s] = real[sp[1]];  // next to a frozen end: no copy of it can be told
-      continue;
-    }
-    out[s] = seen.insert(key_of(sp)).second;
+    out.keys[s] = std::min(forward, backward);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map) {
+  const auto pieces = segment_keys(system, map);
+  std::set<SegmentKeys::Key> seen;
+  std::vector<char> out(system.num_segments(), 0);
+  for (int s = 0; s < system.num_segments(); ++s) {
+    const auto& sp = system.segment_points[s];
+    if (!pieces.real[sp[1]] && !pieces.real[sp[2]]) continue;
+    if (!pieces.keys[s]) {
+      out[s] = pieces.real[sp[1]];  // next to a frozen end: no copy of it can be told
+      continue;
+    }
+    out[s] = seen.insert(*pieces.keys[s]).second;
+  }
+  return out;
+}
+
+std::vector<char> periodic_tested_segments(const YarnSystem& system, const PeriodicMap& map) {
+  std::vector<char> tested = repeat_segments(system, map);
+  const auto pieces = segment_keys(system, map);
+  std::set<SegmentKeys::Key> repeat;
+  for (int s = 0; s < system.num_segments(); ++s)
+    if (tested[s] && pieces.keys[s]) repeat.insert(*pieces.keys[s]);
+  // Segments that copy no repeat segment: next to a frozen point, or at the patch's cut yarn ends, where the
+  // copy of an end's real segment runs on.
+  for (int s = 0; s < system.num_segments(); ++s) tested[s] |= !pieces.keys[s] || !repeat.count(*pieces.keys[s]);
+  return tested;
 }
 
 CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,

@@ -41,6 +41,14 @@ struct CellStress {
 /// alone counted such pieces twice, in the energy and the stress.
 std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map);
 
+/// The segments a periodic patch's pull-through guard and auditor test pairs from: one repeat's (repeat_segments)
+/// and those that copy none of them (next to a frozen point, or at a yarn end where the patch's curves are cut). Every other segment is a translated copy of a
+/// repeat segment that moves as it does (apply_periodic), and the rings are at least two stitches wide, so each
+/// pair that can meet in a step (within the movement limit) has a copy whose one segment is a repeat segment and
+/// whose other is in the patch: testing that copy tests them all. The guard's groups (a real point with its
+/// copies) carry a halving or hold to every copy.
+std::vector<char> periodic_tested_segments(const YarnSystem& system, const PeriodicMap& map);
+
 /// The stress at `points` with contact between the given pairs; the map must say each virtual point's cell.
 CellStress cell_stress(const YarnSystem& system, const YarnParams& params, const ContactPairs& pairs, const PeriodicMap& map,
                        const Eigen::Matrix3Xd& points);

@@ -114,6 +114,14 @@ void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matr
   }
 }
 
+void group_copies(const PeriodicMap& map, std::vector<int>& groups, int first) {
+  for (size_t i = 0; i < map.virtual_points.size(); ++i) {
+    int& real = groups[map.real_points[i]];
+    if (real < 0) real = first++;
+    groups[map.virtual_points[i]] = real;
+  }
+}
+
 void scale_period(PeriodicMap& map, Eigen::Matrix3Xd& points, double sx, double sy) {
   if (!(sx > 0 && sy > 0 && std::isfinite(sx) && std::isfinite(sy)))
     throw Error("", "period", "the period scales must be positive, found " + std::to_string(sx) + " x " + std::to_string(sy));

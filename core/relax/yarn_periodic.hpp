@@ -25,6 +25,10 @@ struct PeriodicMap {
 /// none. Positions that start consistent (virtual = real + offset) stay so.
 void apply_periodic(const PeriodicMap& map, Eigen::Matrix3Xd& delta, Eigen::Matrix3Xd& velocities);
 
+/// A real point and its virtual copies move as one (Leaf §5), so the pull-through guard holds them together:
+/// each real point that has copies gets a group id from `first` on, shared with its copies, in `groups` (per point).
+void group_copies(const PeriodicMap& map, std::vector<int>& groups, int first);
+
 /// A pattern's periodic patch: its yarn tiled (2k + 3) x (2k + 3) times, the centre repeat real and the k
 /// rings around it virtual (at least two stitches or yarns wide, so that every real point sees the
 /// neighbourhood it would have in an endless fabric). The outermost ring only makes the virtual stitches

@@ -347,13 +347,7 @@ public:
     std::vector<int> groups(system.num_points(), -1);
     for (int l = 0; l < static_cast<int>(targets.boundary_loops.size()); ++l)
       for (int p : targets.boundary_loops[l]) groups[p] = l;
-    // A real point and its virtual copies move as one (Leaf §5), so the guard holds them together.
-    int next = static_cast<int>(targets.boundary_loops.size());
-    for (size_t i = 0; i < targets.periodic.virtual_points.size(); ++i) {
-      int& real = groups[targets.periodic.real_points[i]];
-      if (real < 0) real = next++;
-      groups[targets.periodic.virtual_points[i]] = real;
-    }
+    group_copies(targets.periodic, groups, static_cast<int>(targets.boundary_loops.size()));
     if (m_options.active_set.enabled) {
       // Points tied to others by a constraint move with them: they never sleep.
       std::vector<char> tied(system.num_points());
@@ -361,6 +355,12 @@ public:
       m_active.emplace(system, m_options.active_set, std::move(tied));
     }
     m_guard.emplace(system, m_options.guard, std::move(groups));
+    if (!m_periodic.empty()) {
+      // One copy of each pair is tested; the guard's groups carry its halvings to the other copies.
+      auto tested = periodic_tested_segments(system, m_periodic);
+      m_auditor.restrict_to(tested);
+      m_guard->restrict_to(std::move(tested));
+    }
     m_inv_mass.resize(system.num_points());
     for (int p = 0; p < system.num_points(); ++p) m_inv_mass[p] = 1.0 / (system.mass[p] * m_options.params.density);
   }

@@ -1,8 +1,14 @@
 // Variable-cell relaxation (issue 24): the period derivative of one repeat's energy against finite
 // differences, and free periods that find the same stress-free repeat from different starts.
+#include <algorithm>
+#include <cstdlib>
+#include <optional>
+
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "relax/pull_through_guard.hpp"
+#include "relax/yarn_audit.hpp"
 #include "relax/yarn_cell.hpp"
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_periodic.hpp"
@@ -61,6 +67,72 @@ TEST(YarnCell, APeriodicPatchsForcesComputeOnlyWhatItsRealPointsNeedAndItsEnergy
     EXPECT_NEAR(e_repeat, cell_stress(p.system, params, pairs, p.patch.map, p.points).energy, 1e-9 * e_repeat);
     EXPECT_GT(e_whole, 4 * e_repeat);
   }
+}
+
+TEST(YarnCell, APeriodicPatchsAuditAndGuardTestOneCopyOfEachPairAndMissNothing) {
+  auto p = relaxed_patch("format knit\np k k k k p\np k k k k p\np cable2x2+ p\n", 40);
+  const auto tested = periodic_tested_segments(p.system, p.patch.map);
+  const long marked = std::count(tested.begin(), tested.end(), 1);
+  EXPECT_LT(marked, p.system.num_segments() / 4);
+  // A periodic move: random on the real points, copied to the virtual ones, none on the frozen ones.
+  const auto periodic_move = [&](double size, unsigned seed) {
+    std::srand(seed);
+    Eigen::Matrix3Xd delta = size * p.system.radius * Eigen::Matrix3Xd::Random(3, p.system.num_points());
+    Eigen::Matrix3Xd velocities = Eigen::Matrix3Xd::Zero(3, p.system.num_points());
+    apply_periodic(p.patch.map, delta, velocities);
+    return delta;
+  };
+  // The auditor: moves of 1.5 r make crossings; each one the whole patch finds has a copy, translated as a pair,
+  // among those the restricted auditor finds, and it finds no other.
+  const Eigen::Matrix3Xd after = p.points + periodic_move(1.5, 7);
+  TopologyAuditor whole(p.system), one_copy(p.system);
+  one_copy.restrict_to(tested);
+  const auto all = whole.crossings(p.points, after), copies = one_copy.crossings(p.points, after);
+  ASSERT_GT(copies.size(), 0u);
+  EXPECT_LT(copies.size(), all.size());
+  const auto same_pair = [](const TopologyAuditor::Crossing& x, const TopologyAuditor::Crossing& y) {
+    return x.segment_a == y.segment_a && x.segment_b == y.segment_b;
+  };
+  for (const auto& c : copies) EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& x) { return same_pair(x, c); }));
+  const auto translate = [&](int from, int to) -> std::optional<Eigen::Vector3d> {  // to's points = from's + t for one t
+    const auto &f = p.system.segment_points[from], &g = p.system.segment_points[to];
+    for (const bool reversed : {false, true}) {  // a piece of yarn may be listed either way along it
+      const auto at = [&](int k) { return f[reversed ? 3 - k : k]; };
+      const Eigen::Vector3d t = p.points.col(g[0]) - p.points.col(at(0));
+      bool same = true;
+      for (int k = 0; k < 4; ++k) same = same && (p.points.col(g[k]) - p.points.col(at(k)) - t).norm() < 1e-9;
+      if (same) return t;
+    }
+    return std::nullopt;
+  };
+  for (const auto& x : all) {
+    const bool copied = std::any_of(copies.begin(), copies.end(), [&](const auto& c) {
+      for (const auto& [a, b] : {std::pair{c.segment_a, c.segment_b}, std::pair{c.segment_b, c.segment_a}}) {
+        const auto ta = translate(x.segment_a, a), tb = translate(x.segment_b, b);
+        if (ta && tb && (*ta - *tb).norm() < 1e-9) return true;
+      }
+      return false;
+    });
+    EXPECT_TRUE(copied) << "segments " << x.segment_a << " and " << x.segment_b;
+  }
+  // The guard: the same move let through, testing one copy of each pair (groups hold a point with its copies);
+  // a movement limit of 2 r lets the move bring pairs through each other.
+  std::vector<int> groups(p.system.num_points(), -1);
+  group_copies(p.patch.map, groups, 0);
+  const auto pairs = find_contact_pairs(p.system, p.points, 2 * p.system.radius);
+  GuardOptions options;
+  options.max_move = 2;
+  PullThroughGuard every(p.system, options, groups), restricted(p.system, options, groups);
+  restricted.restrict_to(tested);
+  every.reset(pairs);
+  restricted.reset(pairs);
+  Eigen::Matrix3Xd delta_every = periodic_move(1.5, 11), delta_restricted = delta_every;
+  every.accept(p.points, delta_every);
+  restricted.accept(p.points, delta_restricted);
+  EXPECT_GT(every.counters().finest_hits, 0);
+  EXPECT_LT(restricted.counters().pairs_tested, every.counters().pairs_tested / 4);
+  EXPECT_EQ(delta_restricted, delta_every);
+  EXPECT_THROW(restricted.restrict_to(std::vector<char>(3, 1)), Error);
 }
 
 TEST(YarnCell, ThePeriodDerivativeMatchesFiniteDifferences) {

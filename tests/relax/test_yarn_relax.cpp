@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include "common/error.hpp"
+#include "relax/guard_model.hpp"
 #include "relax/pull_through_guard.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -163,6 +164,58 @@ TEST(PullThroughGuard, AJammedPairSlowsOnlyItsOwnPoints) {
   EXPECT_GT(jammed, 0);
   EXPECT_GT(guard.counters().halvings, 0);
   EXPECT_EQ(crossings, 0);
+}
+
+TEST(PullThroughGuard, HeldYarnsThatHoldOthersPastTheHoldRoundsHoldTheWholeStep) {
+  // A stack of straight yarns 0.15 mm apart, the lowest still and the others pushed down 0.2 mm: each held yarn
+  // leaves the one above it hitting it, one guard round later. A ring far away keeps its whole move while the
+  // holds settle the stack within kGuardHoldRounds rounds; past them every point is held (GuardRound::HoldAll,
+  // the CUDA guard's policy too).
+  for (const int yarns : {4, 6}) {
+    SCOPED_TRACE(yarns);
+    mesh::YarnCurves yarn;
+    yarn.radius = 0.5;
+    yarn.curve_start = {0};
+    for (int k = 0; k < yarns; ++k) {
+      for (int i = 0; i < 12; ++i) {
+        yarn.points.emplace_back(i, 0, 0.15 * k);
+        yarn.point_face.push_back(-1);
+        yarn.point_type.push_back(-1);
+      }
+      yarn.curve_start.push_back(static_cast<int>(yarn.points.size()));
+      yarn.closed.push_back(0);
+    }
+    skein::testing::add_ring(yarn, {0, 40, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, 24);
+    const auto system = make_yarn_system(yarn);
+    GuardOptions options;
+    options.max_move = 1.0;
+    options.max_halvings = 0;
+    PullThroughGuard guard(system, options);
+    guard.reset(find_contact_pairs(system, system.points, 4 * system.radius));
+    Eigen::Matrix3Xd delta = Eigen::Matrix3Xd::Zero(3, system.num_points());
+    for (int p = yarn.curve_start[1]; p < system.num_points(); ++p) delta(2, p) = -0.2;
+    guard.accept(system.points, delta);
+    const auto ring = delta.middleCols(yarn.curve_start[yarns], yarn.curve_size(yarns));
+    if (yarns == 1 + model::kGuardHoldRounds) {
+      EXPECT_TRUE(delta.middleCols(yarn.curve_start[1], yarn.curve_start[yarns] - yarn.curve_start[1]).isZero());
+      EXPECT_TRUE((ring.row(2).array() == -0.2).all());
+    } else {
+      EXPECT_TRUE(delta.isZero());
+      EXPECT_EQ(guard.counters().held_points, system.num_points() - yarn.curve_start[1]);
+    }
+    EXPECT_EQ(TopologyAuditor(system).crossings(system.points, system.points + delta).size(), 0u);
+  }
+}
+
+TEST(PullThroughGuard, ARoundsActionIsHalveThenHoldThenHoldAll) {
+  using model::GuardRound;
+  EXPECT_EQ(model::guard_round(0, 0, 2), GuardRound::Done);
+  EXPECT_EQ(model::guard_round(0, 5, 2), GuardRound::Halve);
+  EXPECT_EQ(model::guard_round(1, 5, 2), GuardRound::Halve);
+  EXPECT_EQ(model::guard_round(2, 5, 2), GuardRound::Hold);
+  EXPECT_EQ(model::guard_round(1 + model::kGuardHoldRounds, 5, 2), GuardRound::Hold);
+  EXPECT_EQ(model::guard_round(2 + model::kGuardHoldRounds, 5, 2), GuardRound::HoldAll);
+  EXPECT_EQ(model::guard_round(9, 0, 2), GuardRound::Done);
 }
 
 TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
