@@ -26,6 +26,7 @@
 #include "cuda/device.hpp"
 #include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
+#include "relax/yarn_options.hpp"
 #include "relax/yarn_settings.hpp"
 #include "relax/yarn_standin.hpp"
 #include "relax/yarn_checkpoint.hpp"
@@ -51,6 +52,34 @@ using namespace skein;
 using nlohmann::json;
 
 namespace skein::cli {
+namespace {
+
+/// A yarn option's flag as the schema declares it (relax/yarn_options.hpp): its help, unit and range, the same as
+/// in jobs, sweeps, projects and the app. `prefix` says when it applies ("with --relax: "), `suffix` adds what only this command does.
+template <class T>
+CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, const std::string& prefix = "", const std::string& suffix = "") {
+  const auto& spec = relax::yarn_option(key);
+  const std::string unit = spec.unit.empty() ? "" : " [" + spec.unit + "]";
+  auto* option = app->add_option(spec.flag(), target, prefix + spec.help + unit + suffix);
+  if (spec.kind == relax::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
+  option->check(CLI::Validator(
+      [&spec](std::string& text) -> std::string {
+        double x = 0;
+        try {
+          size_t used = 0;
+          x = std::stod(text, &used);
+          if (used != text.size()) return "expected a number, found " + text;
+        } catch (const std::exception&) {
+          return "expected a number, found " + text;
+        }
+        if (spec.allows(x)) return {};
+        return "must be in " + spec.range() + (spec.unit.empty() ? "" : " " + spec.unit) + ", found " + text + " (" + spec.help + ")";
+      },
+      spec.range()));
+  return option->capture_default_str();
+}
+
+}  // namespace
 
 int run_command_line(int argc, char** argv) {
   CLI::App app{"skein: polygon mesh → knitted garment with yarn-level detail (Yuksel et al. 2012 stitch meshes)"};
@@ -200,14 +229,13 @@ int run_command_line(int argc, char** argv) {
   std::string ry_checkpoint;
   ry->add_option("INPUT", ry_in, ".skein project (its stitch faces drive shape preservation) or .bcc yarn")->required();
   ry->add_option("-o,--output", ry_out, "relaxed yarn to write (.bcc or .obj polylines)")->required();
-  ry->add_option("--method", ry_method, "integrator: fire (quasi-static, fast), euler (Leaf Algorithm 1) or lbfgs (quasi-Newton, CPU)")
-      ->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
+  add_yarn_option(ry, "method", ry_method);
   std::string ry_backend = "auto";
   ry->add_option("--backend", ry_backend, "auto (the GPU when one answers, else the CPU), cpu or cuda (an error without a GPU)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   ry->add_option("--checkpoint", ry_checkpoint, "checkpoint file, written atomically every --checkpoint-every steps or minutes");
-  ry->add_option("--checkpoint-every", ry_options.checkpoint_every, "steps between checkpoints (default 500 with --checkpoint)");
-  ry->add_option("--checkpoint-minutes", ry_options.checkpoint_minutes, "minutes between checkpoints");
+  add_yarn_option(ry, "checkpoint_every", ry_options.checkpoint_every, "", " (500 with --checkpoint when neither this nor --checkpoint-minutes is given)");
+  add_yarn_option(ry, "checkpoint_minutes", ry_options.checkpoint_minutes);
   ry->add_option("--resume", ry_resume, "continue from this checkpoint (same input and method)");
   ry->add_option("--report", ry_report, "JSON report: converged, steps, wall_seconds, residual, guard_events, pull_through_events");
   ry->add_option("--log", ry_log, "per-step log as CSV: step, energy, residual, time step, largest move, contacts, guard hits, held points, crossings");
@@ -217,35 +245,23 @@ int run_command_line(int argc, char** argv) {
   std::string ry_views = "garment";
   ry->add_option("--views", ry_views, "garment (three-quarter front, back-side), flat (front, back) or three (front, back, three-quarter) for --png")
       ->check(CLI::IsMember({"garment", "flat", "three"}))->capture_default_str();
-  ry->add_option("--max-steps", ry_options.max_steps, "step cap")->capture_default_str();
-  ry->add_option("--max-seconds", ry_options.max_seconds, "wall-time cap [s] (0: none)")->capture_default_str();
-  ry->add_option("--tolerance", ry_options.tolerance, "Leaf eq. 5 ε1: stop when |∇E| / |∇E_0| is below this ...")->capture_default_str();
-  ry->add_option("--stall", ry_options.stall, "... and |∇E| changes by less than this fraction per step (ε2)")->capture_default_str();
+  add_yarn_option(ry, "max_steps", ry_options.max_steps);
+  add_yarn_option(ry, "max_seconds", ry_options.max_seconds);
+  add_yarn_option(ry, "tolerance", ry_options.tolerance);
+  add_yarn_option(ry, "stall", ry_options.stall);
   std::string ry_stop_rule = "leaf";
-  ry->add_option("--stop-rule", ry_stop_rule, "leaf (eq. 5: --tolerance and --stall, relative to the first step) or force (the largest force per yarn "
-                                              "length at most --force-tolerance × B/r³, and the energy fell less than --energy-stall of itself over the "
-                                              "last --stall-window steps)")
-      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
-  ry->add_option("--force-tolerance", ry_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
-  ry->add_option("--stall-window", ry_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
-  ry->add_option("--energy-stall", ry_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
-      ->capture_default_str();
+  add_yarn_option(ry, "stop_rule", ry_stop_rule);
+  add_yarn_option(ry, "force_tolerance", ry_options.force_tolerance);
+  add_yarn_option(ry, "stall_window", ry_options.stall_window);
+  add_yarn_option(ry, "energy_stall", ry_options.energy_stall);
   std::string ry_stop_scale = "first";
-  ry->add_option("--stop-scale", ry_stop_scale,
-                 "Leaf eq. 5's |∇E_0|: first (whole) or clipped (each point's force clipped to the largest of all but the largest 0.1 %, "
-                 "so that a few kinks of the emitted yarn do not end the run early; CPU only)")
-      ->check(CLI::IsMember({"first", "clipped"}))
-      ->capture_default_str();
-  ry->add_option("--jam-steps", ry_options.jam_steps,
-                 "stop, not converged, when for this many steps in a row the guard held yarn against yarn on every step and the energy "
-                 "fell by less than --jam-drop of itself over them (0: never)")
-      ->capture_default_str();
-  ry->add_option("--jam-drop", ry_options.jam_drop, "with --jam-steps: the energy's relative fall over the window that still counts as relaxing")
-      ->capture_default_str();
-  ry->add_option("--max-move", ry_options.guard.max_move, "ε: largest move of any yarn point per step, × r")->capture_default_str();
+  add_yarn_option(ry, "stop_scale", ry_stop_scale);
+  add_yarn_option(ry, "jam_steps", ry_options.jam_steps);
+  add_yarn_option(ry, "jam_drop", ry_options.jam_drop);
+  add_yarn_option(ry, "max_move", ry_options.guard.max_move);
   ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
-  ry->add_option("--take-up", ry_take_up, "rest length of the yarn × its emitted length")->capture_default_str();
+  add_yarn_option(ry, "take_up", ry_take_up);
   std::string ry_rest_lengths;
   ry->add_option("--rest-lengths", ry_rest_lengths,
                  "a .bcc of the same yarn in another shape whose lengths (× --take-up) are the rest lengths, instead of the input's own "
@@ -256,10 +272,10 @@ int run_command_line(int argc, char** argv) {
   FabricChoice ry_fabric;
   add_fabric(ry, ry_fabric, "a project's yarn, relaxed at its compressed contact radius with each stitch cut to Munden's loop length (docs/yarn.md)", false);
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
-  ry->add_option("--k-bend", ry_options.params.k_bend, "bending stiffness (Leaf eq. 7)")->capture_default_str();
-  ry->add_option("--k-stretch", ry_options.params.k_stretch, "internal stretch stiffness (Leaf eq. 8)")->capture_default_str();
-  ry->add_option("--k-length", ry_options.params.k_length, "length penalty stiffness (Leaf eq. 1)")->capture_default_str();
-  ry->add_option("--k-contact", ry_options.params.k_contact, "contact stiffness (Leaf eq. 9)")->capture_default_str();
+  add_yarn_option(ry, "k_bend", ry_options.params.k_bend);
+  add_yarn_option(ry, "k_stretch", ry_options.params.k_stretch);
+  add_yarn_option(ry, "k_length", ry_options.params.k_length);
+  add_yarn_option(ry, "k_contact", ry_options.params.k_contact);
   ry->add_option("--k-global", ry_options.params.k_global, "mass-proportional damping (Leaf eq. 11), Euler only")->capture_default_str();
   ry->add_option("--k-dt", ry_options.params.k_dt, "tangential contact damping (Leaf eq. 12), Euler only")->capture_default_str();
   ry->add_option("--k-dn", ry_options.params.k_dn, "normal contact damping (Leaf eq. 12), Euler only")->capture_default_str();
@@ -275,18 +291,14 @@ int run_command_line(int argc, char** argv) {
   ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")->capture_default_str();
   ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
       ->capture_default_str();
-  ry->add_option("--contact-spacing", ry_options.sampling.spacing,
-                 "adaptive contact samples: the fewest per segment with no gap of yarn over this × r between two "
-                 "(at most 2√2 ≈ 2.828; 0: Leaf's odd count over L / 2r)")
-      ->capture_default_str();
+  add_yarn_option(ry, "contact_spacing", ry_options.sampling.spacing);
   std::string ry_warm, ry_warm_project;
   relax::LocalRelaxOptions ry_local;
   ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
                                           "and --rings rings around them");
   ry->add_option("--warm-project", ry_warm_project, "with --warm-start: the project its yarn was emitted from, before the edits");
-  ry->add_option("--rings", ry_local.rings, "with --warm-start: rings of stitches around the changed ones that relax (grown while the outermost moves)")
-      ->capture_default_str();
-  ry->add_option("--halo", ry_local.halo, "with --warm-start: rings beyond those, held in place")->capture_default_str();
+  add_yarn_option(ry, "rings", ry_local.rings, "with --warm-start: ");
+  add_yarn_option(ry, "halo", ry_local.halo, "with --warm-start: ");
   bool ry_stand_in = false;
   relax::StandInOptions ry_stand_in_options;
   ry->add_flag("--stand-in", ry_stand_in,
@@ -343,7 +355,7 @@ int run_command_line(int argc, char** argv) {
   pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
   FabricChoice pat_fabric;
   add_fabric(pat, pat_fabric, "sets the yarn radius and, without --gauge, the stitch size of its standard gauge", true);
-  pat->add_option("--take-up", pat_take_up, "with --relax: rest length of the yarn x its emitted length")->capture_default_str();
+  add_yarn_option(pat, "take_up", pat_take_up, "with --relax: ");
   std::vector<std::string> pat_take_up_stitch;
   pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
   std::string pat_period;
@@ -353,19 +365,16 @@ int run_command_line(int argc, char** argv) {
       ->check(CLI::Range(0.25, 4.0))->capture_default_str();
   pat->add_option("--stitches", pat_stitches, "stitch library folder (default: the bundled stitches/)");
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
-  pat->add_option("--max-steps", pat_options.max_steps, "with --relax: step cap")->capture_default_str();
-  pat->add_option("--max-seconds", pat_options.max_seconds, "with --relax: wall-time cap [s] (0: none)")->capture_default_str();
-  pat->add_option("--tolerance", pat_options.tolerance, "with --relax: Leaf eq. 5 ε1, as relax-yarn's")->capture_default_str();
+  add_yarn_option(pat, "max_steps", pat_options.max_steps, "with --relax: ");
+  add_yarn_option(pat, "max_seconds", pat_options.max_seconds, "with --relax: ");
+  add_yarn_option(pat, "tolerance", pat_options.tolerance, "with --relax: ");
   std::string pat_method = "lbfgs";
-  pat->add_option("--method", pat_method, "with --relax: lbfgs, fire or euler, as relax-yarn's")->check(CLI::IsMember({"fire", "euler", "lbfgs"}))->capture_default_str();
+  add_yarn_option(pat, "method", pat_method, "with --relax: ");
   std::string pat_stop_rule = "force";
-  pat->add_option("--stop-rule", pat_stop_rule, "with --relax: force (the largest force per yarn length against the yarn's bending force B/r³, and the energy "
-                                                "stalled) or leaf (eq. 5, relative to the first step), as relax-yarn's")
-      ->check(CLI::IsMember({"force", "leaf"}))->capture_default_str();
-  pat->add_option("--force-tolerance", pat_options.force_tolerance, "with --stop-rule force: the largest force per yarn length, × B/r³")->capture_default_str();
-  pat->add_option("--stall-window", pat_options.stall_window, "with --stop-rule force: steps of the energy's stall")->capture_default_str();
-  pat->add_option("--energy-stall", pat_options.energy_stall, "with --stop-rule force: the energy's largest fall over the window, a share of itself")
-      ->capture_default_str();
+  add_yarn_option(pat, "stop_rule", pat_stop_rule, "with --relax: ");
+  add_yarn_option(pat, "force_tolerance", pat_options.force_tolerance);
+  add_yarn_option(pat, "stall_window", pat_options.stall_window);
+  add_yarn_option(pat, "energy_stall", pat_options.energy_stall);
   std::string pat_free_axes;
   pat->add_option("--free-period", pat_free_axes,
                   "with --relax: the repeat's period relaxes too, to zero mean stress (variable-cell): the pattern's own gauge, in the report; "
@@ -373,12 +382,11 @@ int run_command_line(int argc, char** argv) {
                   "docs/patterns.md)")
       ->expected(0, 1)->default_str("x")->check(CLI::IsMember({"xy", "x", "y"}));
   pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
-  pat->add_option("--k-bend", pat_options.params.k_bend, "with --relax: bending stiffness (Leaf eq. 7), as relax-yarn's")->capture_default_str();
-  pat->add_option("--k-contact", pat_options.params.k_contact, "with --relax: contact stiffness (Leaf eq. 9), as relax-yarn's")->capture_default_str();
-  pat->add_option("--k-stretch", pat_options.params.k_stretch, "with --relax: internal stretch stiffness (Leaf eq. 8), as relax-yarn's")->capture_default_str();
+  add_yarn_option(pat, "k_bend", pat_options.params.k_bend, "with --relax: ");
+  add_yarn_option(pat, "k_contact", pat_options.params.k_contact, "with --relax: ");
+  add_yarn_option(pat, "k_stretch", pat_options.params.k_stretch, "with --relax: ");
   pat->add_flag("--shear", pat_options.period.shear, "with --free-period: the repeat may shear too (a diagonal pattern); without it only its two lengths relax");
-  pat->add_option("--contact-spacing", pat_options.sampling.spacing, "with --relax: adaptive contact samples, as relax-yarn's (0: Leaf's rule)")
-      ->capture_default_str();
+  add_yarn_option(pat, "contact_spacing", pat_options.sampling.spacing, "with --relax: ");
   std::string pat_views = "flat";
   int pat_panel = 900;
   pat->add_option("--views", pat_views, "flat (front and back), front, or three (front, back, three-quarter), for --png and --preview-png")

@@ -50,30 +50,30 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
           "energy_stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
           "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
-  o.method = relax::parse_yarn_method(k.choice("method", "fire", {"fire", "euler", "lbfgs"}));
+  o.method = relax::parse_yarn_method(k.choice("method", "fire", relax::yarn_option("method").choices));
   backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
-  o.max_steps = k.integer("max_steps", o.max_steps, 0, 1L << 40);
-  o.max_seconds = k.number("max_seconds", 0, 0, 1e9);
-  o.tolerance = k.number("tolerance", o.tolerance, 0, 1);
-  o.stall = k.number("stall", o.stall, 0, 1e3);
-  o.clipped_scale = k.choice("stop_scale", "first", {"first", "clipped"}) == "clipped";
-  o.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "leaf", {"leaf", "force"}));
-  o.force_tolerance = k.number("force_tolerance", o.force_tolerance, 1e-9, 1e6);
-  o.stall_window = k.integer("stall_window", o.stall_window, 1, 1L << 40);
-  o.energy_stall = k.number("energy_stall", o.energy_stall, 0, 1);
-  o.jam_steps = k.integer("jam_steps", o.jam_steps, 0, 1L << 40);
-  o.jam_drop = k.number("jam_drop", o.jam_drop, 0, 1);
-  o.guard.max_move = k.number("max_move", o.guard.max_move, 1e-6, 10);
+  o.max_steps = static_cast<long>(k.option("max_steps", o.max_steps));
+  o.max_seconds = k.option("max_seconds", 0);
+  o.tolerance = k.option("tolerance", o.tolerance);
+  o.stall = k.option("stall", o.stall);
+  o.clipped_scale = k.choice("stop_scale", "first", relax::yarn_option("stop_scale").choices) == "clipped";
+  o.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "leaf", relax::yarn_option("stop_rule").choices));
+  o.force_tolerance = k.option("force_tolerance", o.force_tolerance);
+  o.stall_window = static_cast<long>(k.option("stall_window", o.stall_window));
+  o.energy_stall = k.option("energy_stall", o.energy_stall);
+  o.jam_steps = static_cast<long>(k.option("jam_steps", o.jam_steps));
+  o.jam_drop = k.option("jam_drop", o.jam_drop);
+  o.guard.max_move = k.option("max_move", o.guard.max_move);
   o.audit = k.flag("audit", true);
   o.active_set.enabled = k.flag("active_set", false);
-  o.sampling.spacing = k.number("contact_spacing", 0, 0, relax::ContactSampling::kMaxCoveringSpacing);
+  o.sampling.spacing = k.option("contact_spacing", 0);
   // Step-based checkpoints by default: a resumed job then ends exactly as an uninterrupted one would.
-  o.checkpoint_every = k.integer("checkpoint_every", 500, 0, 1L << 40);
-  o.checkpoint_minutes = k.number("checkpoint_minutes", 0, 0, 1e6);
-  o.params.k_bend = k.number("k_bend", o.params.k_bend, 0, 1e9);
-  o.params.k_stretch = k.number("k_stretch", o.params.k_stretch, 0, 1e9);
-  o.params.k_length = k.number("k_length", o.params.k_length, 0, 1e9);
-  o.params.k_contact = k.number("k_contact", o.params.k_contact, 0, 1e9);
+  o.checkpoint_every = static_cast<long>(k.option("checkpoint_every", 500));
+  o.checkpoint_minutes = k.option("checkpoint_minutes", 0);
+  o.params.k_bend = k.option("k_bend", o.params.k_bend);
+  o.params.k_stretch = k.option("k_stretch", o.params.k_stretch);
+  o.params.k_length = k.option("k_length", o.params.k_length);
+  o.params.k_contact = k.option("k_contact", o.params.k_contact);
   return o;
 }
 

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
+#include "relax/yarn_options.hpp"
 
 namespace skein::cli {
 
@@ -64,6 +65,18 @@ public:
     if (!v.is_number_integer()) fail(name(key), "expected a whole number, found " + v.dump());
     const long x = v.get<long>();
     if (x < low || x > high) fail(name(key), "expected a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "], found " + v.dump());
+    return x;
+  }
+  /// A yarn option's number, in the range the schema gives it (relax/yarn_options.hpp): the same as on the command
+  /// line, in a project and in the app.
+  double option(const std::string& key, double fallback) const {
+    if (!has(key)) return fallback;
+    const auto& spec = relax::yarn_option(key);
+    const auto& v = at(key);
+    const bool whole = spec.kind == relax::YarnOption::Kind::Integer;
+    if (whole ? !v.is_number_integer() : !v.is_number()) fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number, found " + v.dump());
+    const double x = v.get<double>();
+    if (!spec.allows(x)) fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number in " + spec.range() + ", found " + v.dump());
     return x;
   }
   bool flag(const std::string& key, bool fallback) const {

@@ -61,19 +61,19 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   const auto option = [&](const std::string& key, const std::string& flag, const std::string& value) {
     if (k.has(key)) args.insert(args.end(), {flag, value});
   };
-  option("method", "--method", k.choice("method", "lbfgs", {"lbfgs", "fire", "euler"}));
-  option("stop_rule", "--stop-rule", k.choice("stop_rule", "force", {"force", "leaf"}));
+  option("method", "--method", k.choice("method", "lbfgs", relax::yarn_option("method").choices));
+  option("stop_rule", "--stop-rule", k.choice("stop_rule", "force", relax::yarn_option("stop_rule").choices));
   if (k.has("free_period") && !(k.at("free_period").is_boolean() && !k.at("free_period").get<bool>()))
     args.insert(args.end(), {"--free-period", k.choice("free_period", "x", {"x", "y", "xy"})});
-  option("max_steps", "--max-steps", std::to_string(k.integer("max_steps", 0, 0, 1L << 40)));
-  option("max_seconds", "--max-seconds", number_text(k.number("max_seconds", 0, 0, 1e9)));
-  option("tolerance", "--tolerance", number_text(k.number("tolerance", 0, 0, 1)));
-  option("force_tolerance", "--force-tolerance", number_text(k.number("force_tolerance", 0, 0, 1e6)));
+  option("max_steps", "--max-steps", std::to_string(static_cast<long>(k.option("max_steps", 0))));
+  option("max_seconds", "--max-seconds", number_text(k.option("max_seconds", 0)));
+  option("tolerance", "--tolerance", number_text(k.option("tolerance", 0)));
+  option("force_tolerance", "--force-tolerance", number_text(k.option("force_tolerance", 0)));
   option("period_tolerance", "--period-tolerance", number_text(k.number("period_tolerance", 0, 0, 1e6)));
   if (!k.flag("audit", true)) args.push_back("--no-audit");
-  option("k_bend", "--k-bend", number_text(k.number("k_bend", 0, 0, 1e6)));
-  option("k_contact", "--k-contact", number_text(k.number("k_contact", 0, 0, 1e6)));
-  option("contact_spacing", "--contact-spacing", number_text(k.number("contact_spacing", 0, 0, 2.83)));
+  option("k_bend", "--k-bend", number_text(k.option("k_bend", 0)));
+  option("k_contact", "--k-contact", number_text(k.option("k_contact", 0)));
+  option("contact_spacing", "--contact-spacing", number_text(k.option("contact_spacing", 0)));
   return args;
 }
 

@@ -1,6 +1,7 @@
 #include "yarn_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -11,6 +12,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
+#include "relax/yarn_options.hpp"
 #include "stitchmesh/fabric.hpp"
 
 
@@ -18,23 +20,30 @@ namespace skein::gui {
 
 namespace {
 
-QDoubleSpinBox* number(const char* name, double low, double high, double step, int decimals, double value, const QString& tip) {
+/// A yarn option's box, its range and tooltip from the schema (relax/yarn_options.hpp), as on the command line.
+QDoubleSpinBox* number(const char* name, const char* key, double step, int decimals, double value) {
+  const auto& spec = relax::yarn_option(key);
   auto* box = new QDoubleSpinBox;
   box->setObjectName(name);
-  box->setRange(low, high);
-  box->setSingleStep(step);
+  // The box shows `decimals` digits and rounds its range to them: inside the schema's range, never past it
+  // (2√2 would round up to 2.83, which the relaxer refuses).
+  const double unit = std::pow(10.0, -decimals);
+  const double low = std::ceil(spec.low / unit) * unit, high = std::floor(spec.high / unit) * unit;
   box->setDecimals(decimals);
+  box->setRange(spec.above_low && low == spec.low ? low + unit : low, high);
+  box->setSingleStep(step);
   box->setValue(value);
-  box->setToolTip(tip);
+  box->setToolTip(QString::fromStdString(spec.help));
   return box;
 }
 
-QSpinBox* count(const char* name, int low, int high, int value, const QString& tip) {
+QSpinBox* count(const char* name, const char* key, int value) {
+  const auto& spec = relax::yarn_option(key);
   auto* box = new QSpinBox;
   box->setObjectName(name);
-  box->setRange(low, high);
+  box->setRange(static_cast<int>(spec.low), static_cast<int>(spec.high));
   box->setValue(value);
-  box->setToolTip(tip);
+  box->setToolTip(QString::fromStdString(spec.help));
   return box;
 }
 
@@ -57,21 +66,18 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   m_method->addItem(tr("Euler (Leaf 2018, Algorithm 1)"), static_cast<int>(relax::YarnMethod::Euler));
   m_method->addItem(tr("L-BFGS (quasi-Newton, CPU, fewest steps)"), static_cast<int>(relax::YarnMethod::Lbfgs));
   m_method->setCurrentIndex(m_method->findData(static_cast<int>(r.method)));
-  m_tolerance = number("tolerance", 1e-4, 0.5, 0.005, 4, r.tolerance, tr("Stop when |∇E| / |∇E₀| is below this (Leaf eq. 5, ε1)"));
-  m_max_steps = count("maxSteps", 1, 1000000, static_cast<int>(std::min<long>(r.max_steps, 1000000)), tr("Stop after this many steps"));
-  m_jam_steps = count("jamSteps", 0, 1000000, static_cast<int>(std::min<long>(r.jam_steps, 1000000)),
-                      tr("Stop, not converged, when for this many steps in a row the guard held yarn against yarn and the energy hardly fell "
-                         "(0: never)"));
-  m_take_up = number("takeUp", 0.1, 10, 0.01, 3, settings.take_up, tr("Rest length of the yarn × its emitted length: below 1 the yarn pulls tighter"));
+  m_tolerance = number("tolerance", "tolerance", 0.005, 4, r.tolerance);
+  m_max_steps = count("maxSteps", "max_steps", static_cast<int>(r.max_steps));
+  m_jam_steps = count("jamSteps", "jam_steps", static_cast<int>(r.jam_steps));
+  m_take_up = number("takeUp", "take_up", 0.01, 3, settings.take_up);
   m_weight = new QComboBox;
   m_weight->setObjectName("weight");
   m_weight->addItem(tr("none (a tenth of the stitch width)"), QString());
   for (const auto& w : mesh::yarn_weights())
     m_weight->addItem(tr("%1 (CYC %2, %3 mm)").arg(QString::fromStdString(w.name)).arg(w.category).arg(w.diameter(), 0, 'f', 2), QString::fromStdString(w.name));
   m_weight->setCurrentIndex(std::max(0, m_weight->findData(QString::fromStdString(settings.weight))));
-  m_weight->setToolTip(tr("A yarn weight class: the yarn is emitted and relaxed at its compressed contact radius, cut to Munden's loop length "
-                          "for the stitch width (the take-up is not used) and drawn at its full radius; the stand-in preview and local "
-                          "re-relaxation after edits keep the emitted radius and need none"));
+  m_weight->setToolTip(QString::fromStdString(relax::yarn_option("weight").help) +
+                       tr("; the stand-in preview and local re-relaxation after edits keep the emitted radius and need none"));
   const auto weight_set = [this] { m_take_up->setEnabled(m_weight->currentIndex() == 0); };
   weight_set();
   connect(m_weight, &QComboBox::currentIndexChanged, this, weight_set);
@@ -85,14 +91,11 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
                          "sees every point"));
   m_adaptive = flag("adaptiveSamples", tr("Adaptive contact samples"), r.sampling.spacing > 0,
                     tr("The fewest contact samples per segment that leave no gap of yarn longer than the spacing; off, Leaf's odd count over L / 2r"));
-  m_spacing = number("contactSpacing", 0.5, relax::ContactSampling::kMaxCoveringSpacing, 0.1, 2, r.sampling.spacing > 0 ? r.sampling.spacing : 2.5,
-                     tr("Largest gap of yarn between two contact samples, × yarn radius (at most 2√2, where contact is still felt before "
-                        "one yarn can pass another)"));
+  m_spacing = number("contactSpacing", "contact_spacing", 0.1, 2, r.sampling.spacing > 0 ? r.sampling.spacing : 2.5);
   m_spacing->setEnabled(m_adaptive->isChecked());
   connect(m_adaptive, &QCheckBox::toggled, m_spacing, &QWidget::setEnabled);
-  m_rings = count("rings", 0, settings.local.max_rings, settings.local.rings,
-                  tr("After stitch edits: rings of stitches around the changed ones that relax (grown while the outermost still moves)"));
-  m_halo = count("halo", 1, 8, settings.local.halo, tr("After stitch edits: rings beyond those, held in place"));
+  m_rings = count("rings", "rings", settings.local.rings);
+  m_halo = count("halo", "halo", settings.local.halo);
 
   auto* form = new QFormLayout;
   form->addRow(tr("Method"), m_method);

@@ -1,6 +1,7 @@
 // skein-gui workflows, driven the way a user drives them: actions, clicks and drags in the 3D view. Runs under
 // xvfb-run (QOpenGLWidget needs a real GL display; Qt's offscreen platform cannot host it). Each stage saves
 // a screenshot to $SKEIN_GUI_SHOTS (or a temporary folder) and checks that it is not blank.
+#include <cmath>
 #include <numeric>
 
 #include <QAction>
@@ -28,6 +29,7 @@
 #include "woven/exemplar.hpp"
 #include "woven_dialog.hpp"
 #include "relax/yarn_io.hpp"
+#include "relax/yarn_options.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/fabric.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -531,6 +533,28 @@ private slots:
     // The preview takes the settings too (the patches' take-up and samples).
     QVERIFY(w.emit_yarn());
     QVERIFY2(w.preview_yarn(), qPrintable(w.last_error()));
+  }
+
+  void the_yarn_dialogs_boxes_take_the_ranges_the_command_line_does() {
+    // One schema (relax/yarn_options.hpp) for the dialog, the CLI, jobs and projects.
+    gui::YarnSettingsDialog dialog(gui::YarnSettings{});
+    for (const auto& [name, key] : std::vector<std::pair<const char*, const char*>>{{"tolerance", "tolerance"}, {"takeUp", "take_up"}, {"contactSpacing", "contact_spacing"}}) {
+      const auto& spec = relax::yarn_option(key);
+      auto* box = dialog.findChild<QDoubleSpinBox*>(name);
+      QVERIFY2(box, name);
+      // Its range rounded inward to the digits the box shows.
+      const double digit = std::pow(10.0, -box->decimals());
+      QVERIFY(box->minimum() >= spec.low && box->minimum() < spec.low + digit);
+      QVERIFY2(box->maximum() <= spec.high && box->maximum() > spec.high - digit, name);
+      QCOMPARE(box->toolTip().toStdString(), spec.help);
+    }
+    for (const auto& [name, key] : std::vector<std::pair<const char*, const char*>>{{"maxSteps", "max_steps"}, {"jamSteps", "jam_steps"}, {"rings", "rings"}, {"halo", "halo"}}) {
+      const auto& spec = relax::yarn_option(key);
+      auto* box = dialog.findChild<QSpinBox*>(name);
+      QVERIFY2(box, name);
+      QCOMPARE(box->minimum(), static_cast<int>(spec.low));
+      QCOMPARE(box->maximum(), static_cast<int>(spec.high));
+    }
   }
 
   void a_yarn_weight_relaxes_the_garment_as_that_yarn() {

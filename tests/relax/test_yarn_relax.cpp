@@ -7,6 +7,7 @@
 #include <atomic>
 
 #include <fstream>
+#include <set>
 
 #include <omp.h>
 
@@ -17,6 +18,7 @@
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
+#include "relax/yarn_options.hpp"
 #include "relax/yarn_settings.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "testing.hpp"
@@ -691,6 +693,33 @@ TEST(YarnSettings, WrittenAsProjectLinesTheyReadBackTheSame) {
   EXPECT_EQ(read_yarn_settings({{"yarn.weight", "3", 3}}, "p.skein").weight, "dk");
 }
 
+TEST(YarnOptions, EachOptionHasOneRangeAndItsDefaultIsInIt) {
+  const YarnSettings defaults;
+  std::set<std::string> keys;
+  for (const auto& option : yarn_options()) {
+    SCOPED_TRACE(option.key);
+    EXPECT_TRUE(keys.insert(option.key).second);  // declared once
+    EXPECT_FALSE(option.help.empty());
+    EXPECT_EQ(&yarn_option(option.key), &option);
+    // The default reads back as itself.
+    YarnSettings copy = defaults;
+    option.set(copy, option.get(defaults));
+    EXPECT_EQ(option.get(copy), option.get(defaults));
+    if (option.kind != YarnOption::Kind::Number && option.kind != YarnOption::Kind::Integer) continue;
+    EXPECT_TRUE(option.allows(std::stod(option.get(defaults))));
+    EXPECT_TRUE(option.allows(option.high));
+    EXPECT_EQ(option.allows(option.low), !option.above_low);
+    EXPECT_FALSE(option.allows(option.high * 2 + 1));
+    EXPECT_FALSE(option.allows(option.low - 1));
+    // A project line past the range is refused, naming the key and the range.
+    if (!option.in_project) continue;
+    const std::string too_big = option.kind == YarnOption::Kind::Integer ? std::to_string(static_cast<long>(option.high) + 1) : "1e12";
+    const std::string msg = skein::testing::error_of([&] { read_yarn_settings({{"yarn." + option.key, too_big, 3}}, "p.skein"); });
+    EXPECT_NE(msg.find("yarn." + option.key + ": must be in " + option.range()), std::string::npos) << msg;
+  }
+  EXPECT_THROW(yarn_option("colour"), Error);
+}
+
 TEST(YarnSettings, BadLinesNameTheFileTheLineAndTheRule) {
   const std::vector<std::pair<mesh::ProjectSetting, std::string>> cases{
       {{"yarn.colour", "red", 7}, "'yarn.colour' is not a setting this skein knows"},
@@ -698,9 +727,9 @@ TEST(YarnSettings, BadLinesNameTheFileTheLineAndTheRule) {
       {{"yarn.max_steps", "1.5", 7}, "'1.5' is not an integer"},
       {{"yarn.audit", "yes", 7}, "neither true nor false"},
       {{"yarn.method", "verlet", 7}, "verlet"},
-      {{"yarn.take_up", "20", 7}, "between 0.1 and 10"},
-      {{"yarn.jam_steps", "-3", 7}, "jam_steps must be 0 (never) or more"},
-      {{"yarn.stop_scale", "median", 7}, "'median' is neither first nor clipped"},
+      {{"yarn.take_up", "20", 7}, "yarn.take_up: must be in [0.1, 10], found 20"},
+      {{"yarn.jam_steps", "-3", 7}, "yarn.jam_steps: must be in [0, 1e+09] steps, found -3"},
+      {{"yarn.stop_scale", "median", 7}, "'median' is not first or clipped"},
       {{"yarn.weight", "wool", 7}, "'wool' is not a yarn weight; one of lace, fingering"},
   };
   for (const auto& [line, rule] : cases) {
