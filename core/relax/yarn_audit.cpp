@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <tuple>
 
@@ -25,8 +26,13 @@ namespace {
 /// against every query, and such a query is tested against every box, so that no box makes a grid too large.
 class BoxGrid {
 public:
-  BoxGrid(std::vector<Eigen::AlignedBox3d> boxes, double cell) : m_boxes(std::move(boxes)), m_cell(std::max(cell, 1e-12)) {
+  /// `members`: per box, whether it is stored (empty: every box); the others can still be asked for by box(i).
+  /// `boxes` must outlive the grid.
+  BoxGrid(const std::vector<Eigen::AlignedBox3d>& boxes, double cell, const std::vector<char>& members = {})
+      : m_boxes(boxes), m_cell(std::max(cell, 1e-12)) {
     for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i) {
+      if (!members.empty() && !members[i]) continue;
+      m_stored.push_back(i);
       if (too_large(m_boxes[i])) m_large.push_back(i);
       else each_cell(m_boxes[i], [&](const Eigen::Vector3i& c) { m_sorted.emplace_back(key_of(c), i); });
     }
@@ -37,7 +43,7 @@ public:
   /// than the boxes).
   template <class Want, class Visit> void overlapping(const Eigen::AlignedBox3d& query, Want want, Visit visit) const {
     if (too_large(query)) {
-      for (int i = 0; i < static_cast<int>(m_boxes.size()); ++i)
+      for (int i : m_stored)
         if (want(i) && query.intersects(m_boxes[i])) visit(i);
       return;
     }
@@ -71,10 +77,11 @@ private:
       for (int y = lo.y(); y <= hi.y(); ++y)
         for (int z = lo.z(); z <= hi.z(); ++z) visit(Eigen::Vector3i(x, y, z));
   }
-  std::vector<Eigen::AlignedBox3d> m_boxes;
+  const std::vector<Eigen::AlignedBox3d>& m_boxes;
   double m_cell;
   std::vector<std::pair<std::uint64_t, int>> m_sorted;
-  std::vector<int> m_large;  ///< boxes kept out of the grid
+  std::vector<int> m_stored;  ///< the boxes stored
+  std::vector<int> m_large;   ///< stored boxes kept out of the grid
 };
 
 /// One piece [s0, s1] x [u0, u1] x [t0, t1] of the difference D(s, u, t) = y_a(s, t) − y_b(u, t), by its
@@ -229,9 +236,13 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
   const int segments = m_system.num_segments();
   // Each segment's Bezier control points in both states (Catmull-Rom to Bezier, written out here so that the
   // auditor shares nothing with the relaxer), and the box that holds the segment all through the move.
-  std::vector<std::array<Vector3d, 8>> bezier(segments);
-  std::vector<Eigen::AlignedBox3d> boxes(segments);
-  std::vector<char> moving(segments);
+  // The buffers are kept from call to call: fresh ones (1.5 MB on a cable's patch) cost a page fault per page.
+  auto& bezier = m_scratch.bezier;
+  auto& boxes = m_scratch.boxes;
+  auto& moving = m_scratch.moving;
+  bezier.resize(segments);
+  boxes.resize(segments);
+  moving.resize(segments);
   double width_sum = 0;
 #pragma omp parallel for schedule(static) reduction(+ : width_sum)
   for (int s = 0; s < segments; ++s) {
@@ -252,18 +263,19 @@ std::vector<TopologyAuditor::Crossing> TopologyAuditor::crossings(const Eigen::M
   }
   const double mean_width = segments > 0 ? width_sum / segments : 0;
   // Cells three times as wide as the boxes are on average: a few long segments do not make every cell crowded.
-  const BoxGrid grid(std::move(boxes), 3 * mean_width);
-  std::vector<std::vector<Crossing>> found(segments > 0 ? omp_get_max_threads() : 0);
+  // Restricted, the grid holds the marked segments only and every segment asks it for its marked partners.
   const bool restricted = !m_tested.empty();
+  const BoxGrid grid(boxes, 3 * mean_width, m_tested);
+  std::vector<std::vector<Crossing>> found(segments > 0 ? omp_get_max_threads() : 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int a = 0; a < segments; ++a) {
-    // Each pair once: from its moving segment, the lower of two moving ones; restricted, from its marked segment
-    // (the lower of two marked ones) when either moves.
-    if (restricted ? !m_tested[a] : !moving[a]) continue;
+    // Each pair once: from its moving segment, the lower of two moving ones; restricted, when either moves, from
+    // its segment that is not marked, or the lower of two marked ones.
+    if (!restricted && !moving[a]) continue;
     const auto want = [&](int b) {
       if (b == a) return false;
       if (!restricted) return !(moving[b] && b < a);
-      return (moving[a] || moving[b]) && !(m_tested[b] && b < a);
+      return (moving[a] || moving[b]) && !(m_tested[a] && b < a);
     };
     grid.overlapping(grid.box(a), want, [&](int b) {
       if (m_system.adjacent(a, b)) return;
@@ -325,7 +337,7 @@ void near_edge_pairs(const std::vector<Vector3d>& a, const std::vector<Vector3d>
   std::vector<Eigen::AlignedBox3d> boxes(b.size());
   double width = 0;
   for (size_t j = 0; j < b.size(); ++j) width += (boxes[j] = box_of(b, j, 0)).sizes().maxCoeff();
-  const BoxGrid grid(std::move(boxes), 2 * width / std::max<size_t>(b.size(), 1) + reach);
+  const BoxGrid grid(boxes, 2 * width / std::max<size_t>(b.size(), 1) + reach);
   for (size_t i = 0; i < a.size(); ++i) grid.overlapping(box_of(a, i, reach), [](int) { return true; }, [&](int j) { visit(i, static_cast<size_t>(j)); });
 }
 

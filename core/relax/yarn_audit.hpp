@@ -1,8 +1,10 @@
 #pragma once
+#include <array>
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/yarn_curves.hpp"
@@ -29,7 +31,8 @@ public:
     bool resolved = true;
   };
   /// Centreline crossings during the straight-line move from `before` to `after`, of segments that are not one
-  /// piece of yarn (YarnSystem::adjacent); pairs of segments that both stay put are not tested.
+  /// piece of yarn (YarnSystem::adjacent); pairs of segments that both stay put are not tested. Not to be called
+  /// from two threads at once on one auditor (it keeps its buffers).
   std::vector<Crossing> crossings(const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after) const;
   /// Only pairs with at least one segment marked here are tested (a periodic patch's periodic_tested_segments:
   /// the patch's other segments are translated copies that move alike, so one copy of each pair is tested);
@@ -40,6 +43,13 @@ private:
   const YarnSystem& m_system;
   double m_tolerance;  ///< [mm]
   std::vector<char> m_tested;  ///< per segment, or empty (restrict_to)
+  /// Per-call buffers, kept so that each step does not allocate them again: one call at a time per auditor.
+  struct Scratch {
+    std::vector<std::array<Eigen::Vector3d, 8>> bezier;
+    std::vector<Eigen::AlignedBox3d> boxes;
+    std::vector<char> moving;
+  };
+  mutable Scratch m_scratch;
 };
 
 /// The most pieces the exact test splits one pair into before it counts the pair as meeting (unresolved).

@@ -94,6 +94,7 @@ TEST(YarnCell, APeriodicPatchsAuditAndGuardTestOneCopyOfEachPairAndMissNothing) 
     return x.segment_a == y.segment_a && x.segment_b == y.segment_b;
   };
   for (const auto& c : copies) EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& x) { return same_pair(x, c); }));
+  EXPECT_EQ(std::adjacent_find(copies.begin(), copies.end(), same_pair), copies.end());  // each pair once
   const auto translate = [&](int from, int to) -> std::optional<Eigen::Vector3d> {  // to's points = from's + t for one t
     const auto &f = p.system.segment_points[from], &g = p.system.segment_points[to];
     for (const bool reversed : {false, true}) {  // a piece of yarn may be listed either way along it
