@@ -3,7 +3,6 @@
 // batch, rebuilds contacts, rolls back, checkpoints, audits and reports.
 #include "cuda/yarn_relaxer.hpp"
 
-#include <chrono>
 
 #include <spdlog/spdlog.h>
 
@@ -24,10 +23,7 @@ public:
       : m_system(system), m_options(options), m_device(system, targets, options), m_auditor(system), m_name(std::move(device)) {}
 
   relax::YarnRelaxReport run(relax::YarnState& state, const std::function<void(const relax::YarnStepLog&)>& on_step) override {
-    using clock = std::chrono::steady_clock;
-    const auto started = clock::now();
-    auto last_checkpoint = started;
-    const auto seconds_since = [](auto t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    relax::RunControl control(m_options);  // the stop order, rollbacks and checkpoints of the CPU relaxer
     const auto fingerprint = relax::checkpoint_fingerprint(m_system, m_options.method);
     m_device.set_state(state);
     long contacts = rebuild(state);
@@ -37,15 +33,14 @@ public:
     std::vector<relax::YarnStepLog> logs;
     Eigen::Matrix3Xd before, after;
     DeviceStatus status;
-    long step = state.step, failures = 0;
+    long step = state.step;
     relax::JamWatch jam(m_options.jam_steps, m_options.jam_drop);
     for (;;) {
       // Where this batch must stop: the step cap, the next checkpoint step, the time cap (at once); with the
       // audit, after every step (the auditor compares consecutive states on the CPU).
       long stop_at = m_options.max_steps;
       if (m_options.checkpoint_every > 0) stop_at = std::min(stop_at, (step / m_options.checkpoint_every + 1) * m_options.checkpoint_every);
-      const bool out_of_time = m_options.max_seconds > 0 && seconds_since(started) >= m_options.max_seconds;
-      const bool interrupted = m_options.interrupt && m_options.interrupt->load();
+      const bool out_of_time = control.out_of_time(), interrupted = control.interrupted();
       if (out_of_time || interrupted) stop_at = step;  // evaluate the current state once more, for the report
       if (m_options.audit) m_device.get_points(before);
       status = m_device.run(stop_at, m_options.audit ? 1 : kBatch, logs);
@@ -60,47 +55,31 @@ public:
         jammed = jammed || jam.jammed(log.energy, log.held_points);
       }
       step = status.step;
-      if (!logs.empty()) failures = 0;
+      if (!logs.empty()) control.step_taken();
       if (status.halt == Halt::NotFinite) {
         // Blow-up: back to the last good state with half the step (Leaf §3.1's step restriction failed).
         m_device.roll_back();
         ++state.rollbacks;
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state with half the step", step);
-        if (++failures > 20) {
+        if (!control.roll_back()) {
           report.stopped_by = relax::StopReason::Diverged;
           break;
         }
         contacts = rebuild(state);
         continue;
       }
-      if (status.halt == Halt::Converged) {
-        report.converged = true;
-        report.stopped_by = relax::StopReason::Converged;
-        break;
-      }
-      if (status.halt == Halt::StopAt && out_of_time) {
-        report.stopped_by = relax::StopReason::TimeCap;
-        break;
-      }
-      if (status.halt == Halt::StopAt && interrupted) {
-        report.stopped_by = relax::StopReason::Interrupted;
-        break;
-      }
-      if (status.halt == Halt::StopAt && step >= m_options.max_steps) {
-        report.stopped_by = relax::StopReason::StepCap;
-        break;
-      }
-      if (jammed) {
-        report.stopped_by = relax::StopReason::Jammed;
-        spdlog::warn("step {}: {}", step, jam.describe());
+      // The time cap and an interrupt were read before the batch, which then only evaluated the state once more.
+      const bool halted = status.halt == Halt::StopAt;
+      report.stopped_by = control.stop(step, status.halt == Halt::Converged, halted && out_of_time, halted && interrupted, jammed);
+      if (report.stopped_by != relax::StopReason::None) {
+        report.converged = report.stopped_by == relax::StopReason::Converged;
+        if (report.stopped_by == relax::StopReason::Jammed) spdlog::warn("step {}: {}", step, jam.describe());
         break;
       }
       if (status.halt == Halt::Rebuild) contacts = rebuild(state);
-      const bool by_steps = m_options.checkpoint_every > 0 && status.halt == Halt::StopAt && step % m_options.checkpoint_every == 0;
-      const bool by_time = m_options.checkpoint_minutes > 0 && seconds_since(last_checkpoint) >= 60 * m_options.checkpoint_minutes;
-      if (by_steps || by_time) {
+      if (control.checkpoint_due(step)) {
         checkpoint(state, fingerprint);
-        last_checkpoint = clock::now();
+        control.checkpoint_written();
         // A resumed run starts with fresh contacts and safe bounds; so does this one, so both go on alike.
         contacts = rebuild(state);
       }
@@ -112,7 +91,7 @@ public:
     state.rollbacks = rollbacks;
     state.contact_rebuilds = rebuilds;
     report.steps = state.step;
-    report.wall_seconds = seconds_since(started);
+    report.wall_seconds = control.seconds();
     report.residual = status.residual;
     report.energy = status.energy;
     report.contacts = contacts;

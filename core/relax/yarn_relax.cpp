@@ -83,6 +83,31 @@ void YarnParams::validate() const {
   if (!(contact_soft > 0 && contact_soft < 1)) throw Error("", "yarn model", "contact_soft must be in (0, 1), found " + std::to_string(contact_soft));
 }
 
+RunControl::RunControl(const YarnRelaxOptions& options) : m_options(options) {}
+
+double RunControl::seconds() const { return std::chrono::duration<double>(Clock::now() - m_started).count(); }
+
+bool RunControl::out_of_time() const { return m_options.max_seconds > 0 && seconds() >= m_options.max_seconds; }
+
+bool RunControl::interrupted() const { return m_options.interrupt && m_options.interrupt->load(); }
+
+StopReason RunControl::stop(long step, bool converged, bool out_of_time, bool interrupted, bool jammed) const {
+  if (converged) return StopReason::Converged;
+  if (step >= m_options.max_steps) return StopReason::StepCap;
+  if (out_of_time) return StopReason::TimeCap;
+  if (interrupted) return StopReason::Interrupted;
+  if (jammed) return StopReason::Jammed;
+  return StopReason::None;
+}
+
+bool RunControl::checkpoint_due(long step) const {
+  const bool by_steps = m_options.checkpoint_every > 0 && step % m_options.checkpoint_every == 0;
+  const bool by_time = m_options.checkpoint_minutes > 0 && std::chrono::duration<double>(Clock::now() - m_last_checkpoint).count() >= 60 * m_options.checkpoint_minutes;
+  return by_steps || by_time;
+}
+
+void RunControl::checkpoint_written() { m_last_checkpoint = Clock::now(); }
+
 bool JamWatch::jammed(double energy, long held) {
   if (m_steps <= 0) return false;
   if (held == 0) {
@@ -366,8 +391,8 @@ public:
   }
 
   YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step) override {
-    const auto started = std::chrono::steady_clock::now();
-    auto last_checkpoint = started, last_thread_count = started;
+    RunControl control(m_options);
+    auto last_thread_count = std::chrono::steady_clock::now();
     const auto seconds_since = [](auto t) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
     refresh_thread_count();
     const double r = m_system.radius, limit = m_options.guard.max_move * r;
@@ -400,7 +425,6 @@ public:
     Eigen::Matrix<double, 3, 2> good_period = state.period;
     Eigen::Matrix3Xd grad, frame_grad, damping, delta, good_points = state.points, good_velocities = state.velocities;
     double energy = 0, residual = 0, force = 0;
-    long failures = 0;
     for (;;) {
       energy = forces(state, grad, damping);
       if (!m_periodic.empty()) constrain_gradient(m_periodic, grad);
@@ -420,14 +444,14 @@ public:
         m_forces.invalidate();
         if (m_active) m_active->wake_all();
         spdlog::warn("step {}: the yarn state is not finite; back to the last good state, step {:.3g} s", state.step, state.time_step);
-        if (++failures > 20) {
+        if (!control.roll_back()) {
           report.stopped_by = StopReason::Diverged;
           break;
         }
         refresh_contacts(state);
         continue;
       }
-      failures = 0;
+      control.step_taken();
       if (frame) {
         frame_stress = cell_stress(m_system, m_options.params, m_pairs, m_periodic, state.points);
         frame_stresses = period_stresses(frame_stress, state.period).cwiseProduct(free_components);
@@ -484,26 +508,10 @@ public:
         }
       }
       state.residual_prev = residual;
-      if (converged) {
-        report.converged = true;
-        report.stopped_by = StopReason::Converged;
-        break;
-      }
-      if (state.step >= m_options.max_steps) {
-        report.stopped_by = StopReason::StepCap;
-        break;
-      }
-      if (m_options.max_seconds > 0 && seconds_since(started) >= m_options.max_seconds) {
-        report.stopped_by = StopReason::TimeCap;
-        break;
-      }
-      if (m_options.interrupt && m_options.interrupt->load()) {
-        report.stopped_by = StopReason::Interrupted;
-        break;
-      }
-      if (jammed) {
-        report.stopped_by = StopReason::Jammed;
-        spdlog::warn("step {}: {}", state.step, jam.describe());
+      report.stopped_by = control.stop(state.step, converged, control.out_of_time(), control.interrupted(), jammed);
+      if (report.stopped_by != StopReason::None) {
+        report.converged = converged;
+        if (report.stopped_by == StopReason::Jammed) spdlog::warn("step {}: {}", state.step, jam.describe());
         break;
       }
 
@@ -564,11 +572,9 @@ public:
         if (cell || frame) log.period_x = state.period(0, 0), log.period_y = state.period(1, 1);
         on_step(log);
       }
-      const bool by_steps = m_options.checkpoint_every > 0 && state.step % m_options.checkpoint_every == 0;
-      const bool by_time = m_options.checkpoint_minutes > 0 && seconds_since(last_checkpoint) >= 60 * m_options.checkpoint_minutes;
-      if (by_steps || by_time) {
+      if (control.checkpoint_due(state.step)) {
         write_checkpoint(m_options.checkpoint, fingerprint, state);
-        last_checkpoint = std::chrono::steady_clock::now();
+        control.checkpoint_written();
         // A resumed run starts with fresh contacts and safe bounds, and L-BFGS with no memory (neither is in the
         // checkpoint); so does this one, so both go on alike.
         refresh_contacts(state);
@@ -581,7 +587,7 @@ public:
     // The last state too, so that a run stopped by a cap goes on from where it stopped.
     if (!m_options.checkpoint.empty() && report.stopped_by != StopReason::Diverged) write_checkpoint(m_options.checkpoint, fingerprint, state);
     report.steps = state.step;
-    report.wall_seconds = seconds_since(started);
+    report.wall_seconds = control.seconds();
     report.residual = state.residual0 > 0 ? residual / state.residual0 : 0;
     report.force_residual = force;
     if (cell) {

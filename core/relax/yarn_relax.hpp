@@ -1,5 +1,6 @@
 #pragma once
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -242,6 +243,36 @@ private:
   double m_drop;
   long m_streak = 0, m_held = 0;
   double m_start = 0, m_fell = 0;
+};
+
+/// The run loop's policy, the same on every back-end (issue 23): which stop reason wins when several hold, how
+/// many rollbacks in a row a run may take, and when a checkpoint is due. Each back-end keeps its own steps (the
+/// CPU's loop, the GPU's batches of kernels) and asks this between them; the guard's round policy is shared the
+/// same way (model::guard_round).
+class RunControl {
+public:
+  explicit RunControl(const YarnRelaxOptions& options);
+  double seconds() const;    ///< since the run started
+  bool out_of_time() const;  ///< the time cap (max_seconds) has passed
+  bool interrupted() const;  ///< the caller has asked the run to stop
+  /// Why a run that has reached `step` stops, in this order: converged, the step cap, the time cap, an interrupt,
+  /// a jam; StopReason::None to go on.
+  StopReason stop(long step, bool converged, bool out_of_time, bool interrupted, bool jammed) const;
+  /// After a step that was not finite (the state goes back to the last good one): false once more than
+  /// kMaxRollbacks have come in a row, and the run has diverged.
+  bool roll_back() { return ++m_rollbacks <= kMaxRollbacks; }
+  void step_taken() { m_rollbacks = 0; }  ///< a finite step ends a run of rollbacks
+  /// Whether a checkpoint is due now that `step` steps are done: at every checkpoint_every steps, or when
+  /// checkpoint_minutes have passed since the last one.
+  bool checkpoint_due(long step) const;
+  void checkpoint_written();  ///< restarts the clock of checkpoint_minutes
+  static constexpr int kMaxRollbacks = 20;
+
+private:
+  using Clock = std::chrono::steady_clock;
+  const YarnRelaxOptions& m_options;
+  Clock::time_point m_started = Clock::now(), m_last_checkpoint = m_started;
+  int m_rollbacks = 0;
 };
 
 /// Relaxes yarn control points toward equilibrium (Yuksel 2012 §6.3, Leaf 2018 §3); never lets two yarns

@@ -209,6 +209,34 @@ TEST(PullThroughGuard, HeldYarnsThatHoldOthersPastTheHoldRoundsHoldTheWholeStep)
   }
 }
 
+TEST(RunControl, StopReasonsWinInOneOrderRollbacksRunOutAndCheckpointsComeOnTime) {
+  // The policy both back-ends share (the CPU loop and the GPU's batches).
+  YarnRelaxOptions options;
+  options.max_steps = 100;
+  options.checkpoint_every = 25;
+  RunControl control(options);
+  EXPECT_EQ(control.stop(100, true, true, true, true), StopReason::Converged);
+  EXPECT_EQ(control.stop(100, false, true, true, true), StopReason::StepCap);
+  EXPECT_EQ(control.stop(99, false, true, true, true), StopReason::TimeCap);
+  EXPECT_EQ(control.stop(99, false, false, true, true), StopReason::Interrupted);
+  EXPECT_EQ(control.stop(99, false, false, false, true), StopReason::Jammed);
+  EXPECT_EQ(control.stop(99, false, false, false, false), StopReason::None);
+  EXPECT_FALSE(control.out_of_time());  // no time cap
+  EXPECT_FALSE(control.interrupted());
+  for (int k = 0; k < RunControl::kMaxRollbacks; ++k) EXPECT_TRUE(control.roll_back());
+  EXPECT_FALSE(control.roll_back());
+  control.step_taken();
+  EXPECT_TRUE(control.roll_back());
+  EXPECT_TRUE(control.checkpoint_due(50));
+  EXPECT_FALSE(control.checkpoint_due(51));
+  options.max_seconds = 1e-9;
+  std::atomic<bool> stop{true};
+  options.interrupt = &stop;
+  const RunControl capped(options);
+  EXPECT_TRUE(capped.out_of_time());
+  EXPECT_TRUE(capped.interrupted());
+}
+
 TEST(PullThroughGuard, ARoundsActionIsHalveThenHoldThenHoldAll) {
   using model::GuardRound;
   EXPECT_EQ(model::guard_round(0, 0, 2), GuardRound::Done);
