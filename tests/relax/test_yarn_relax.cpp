@@ -248,6 +248,28 @@ TEST(PullThroughGuard, ARoundsActionIsHalveThenHoldThenHoldAll) {
   EXPECT_EQ(model::guard_round(9, 0, 2), GuardRound::Done);
 }
 
+TEST(YarnRelax, AKnitPulledTightWithWeakContactsUnhooksStitchesWithoutTheGuardAndTheAuditorSeesIt) {
+  // Issue 27's negative control on knitting: stockinette given half its yarn and a contact a thousandth as stiff,
+  // so the loops pull through one another unless the guard stops them. Unguarded, the per-step auditor counts
+  // the crossings; guarded, the same run has none.
+  const auto k = skein::testing::knitted(models::swatch(), "");
+  const auto system = make_yarn_system(k.yarn, 0.5);
+  YarnRelaxOptions options;
+  options.max_steps = 300;
+  options.tolerance = 0;
+  options.audit = true;
+  options.params.k_contact = 0.05;
+  options.guard.max_move = 1.0;
+  options.contact_margin = 2.0;
+  options.guard.enabled = false;
+  const auto unguarded = relaxed(system, options);
+  EXPECT_GT(unguarded.report.pull_through_events, 0);
+  options.guard.enabled = true;
+  const auto guarded = relaxed(system, options);
+  EXPECT_EQ(guarded.report.pull_through_events, 0);
+  EXPECT_GT(guarded.report.guard.finest_hits, 0);  // the guard had pulls to stop
+}
+
 TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
   const auto yarn = skein::testing::linked_rings();
   const auto system = make_yarn_system(yarn, 0.3);
