@@ -64,19 +64,37 @@ CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, c
   if (spec.kind == relax::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
   option->check(CLI::Validator(
       [&spec](std::string& text) -> std::string {
+        const bool whole = spec.kind == relax::YarnOption::Kind::Integer;
+        const std::string expected = whole ? "expected a whole number, found " : "expected a number, found ";
         double x = 0;
         try {
           size_t used = 0;
           x = std::stod(text, &used);
-          if (used != text.size()) return "expected a number, found " + text;
+          if (used != text.size()) return expected + text;
         } catch (const std::exception&) {
-          return "expected a number, found " + text;
+          return expected + text;
         }
+        if (whole && x != std::floor(x)) return expected + text;
         if (spec.allows(x)) return {};
         return "must be in " + spec.range() + (spec.unit.empty() ? "" : " " + spec.unit) + ", found " + text + " (" + spec.help + ")";
       },
       spec.range()));
   return option->capture_default_str();
+}
+
+/// A positive number (a radius, a size): the value named when it is not one.
+CLI::Validator positive() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          size_t used = 0;
+          const double x = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(x) && x > 0) return {};
+        } catch (const std::exception&) {
+        }
+        return "expected a positive number, found " + text;
+      },
+      "> 0");
 }
 
 }  // namespace
@@ -259,7 +277,7 @@ int run_command_line(int argc, char** argv) {
   add_yarn_option(ry, "jam_steps", ry_options.jam_steps);
   add_yarn_option(ry, "jam_drop", ry_options.jam_drop);
   add_yarn_option(ry, "max_move", ry_options.guard.max_move);
-  ry->add_option("--contact-margin", ry_options.contact_margin, "contact cache margin beyond touching, × r (at least 2 ε)")->capture_default_str();
+  add_yarn_option(ry, "contact_margin", ry_options.contact_margin);
   ry->add_option("--guard-depth", ry_options.guard.max_depth, "bounding-sphere levels of the guard (pieces of 1/2^depth of a segment)")->capture_default_str();
   add_yarn_option(ry, "take_up", ry_take_up);
   std::string ry_rest_lengths;
@@ -268,7 +286,7 @@ int run_command_line(int argc, char** argv) {
                  "(e.g. a swatch relaxed flat, then bent: the bent one relaxes with the flat yarn's lengths)");
   std::vector<std::string> ry_take_up_stitch;
   ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
-  ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)");
+  ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)")->check(positive());
   FabricChoice ry_fabric;
   add_fabric(ry, ry_fabric, "a project's yarn, relaxed at its compressed contact radius with each stitch cut to Munden's loop length (docs/yarn.md)", false);
   ry->add_option("--stitches", ry_stitches, "stitch library folder (default: the bundled stitches/)");
@@ -276,10 +294,10 @@ int run_command_line(int argc, char** argv) {
   add_yarn_option(ry, "k_stretch", ry_options.params.k_stretch);
   add_yarn_option(ry, "k_length", ry_options.params.k_length);
   add_yarn_option(ry, "k_contact", ry_options.params.k_contact);
-  ry->add_option("--k-global", ry_options.params.k_global, "mass-proportional damping (Leaf eq. 11), Euler only")->capture_default_str();
-  ry->add_option("--k-dt", ry_options.params.k_dt, "tangential contact damping (Leaf eq. 12), Euler only")->capture_default_str();
-  ry->add_option("--k-dn", ry_options.params.k_dn, "normal contact damping (Leaf eq. 12), Euler only")->capture_default_str();
-  ry->add_option("--time-step", ry_options.time_step, "Euler's step and FIRE's first step [s] (0: 0.002 for Euler, 0.02 for FIRE)")->capture_default_str();
+  add_yarn_option(ry, "k_global", ry_options.params.k_global);
+  add_yarn_option(ry, "k_dt", ry_options.params.k_dt);
+  add_yarn_option(ry, "k_dn", ry_options.params.k_dn);
+  add_yarn_option(ry, "time_step", ry_options.time_step);
   ry->add_flag("--no-guard", ry_no_guard, "only the movement limit, no pull-through tests (to measure what the guard costs)");
   ry->add_flag("--no-safe-bounds", ry_no_bounds, "test every contact pair on every step (Yuksel eqs. 8-10 off)");
   ry->add_flag("--no-shape", ry_no_shape, "no boundary constraints or patch-tracking forces");
@@ -352,7 +370,7 @@ int run_command_line(int argc, char** argv) {
   pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
   pat->add_option("--stitch-size", pat_size.width, "knits: stitch width [mm]; wovens: yarn spacing is 4 yarn radii")->capture_default_str();
   pat->add_option("--stitch-height", pat_size.height, "knits: stitch height [mm]")->capture_default_str();
-  pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)");
+  pat->add_option("--yarn-radius", pat_radius, "yarn radius [mm] (default: a tenth of the stitch width)")->check(positive());
   FabricChoice pat_fabric;
   add_fabric(pat, pat_fabric, "sets the yarn radius and, without --gauge, the stitch size of its standard gauge", true);
   add_yarn_option(pat, "take_up", pat_take_up, "with --relax: ");

@@ -74,7 +74,9 @@ public:
     const auto& spec = relax::yarn_option(key);
     const auto& v = at(key);
     const bool whole = spec.kind == relax::YarnOption::Kind::Integer;
-    if (whole ? !v.is_number_integer() : !v.is_number()) fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number, found " + v.dump());
+    // A whole number may be written as 1e3 or 1000.0 (JSON has one kind of number).
+    if (!v.is_number() || (whole && v.get<double>() != std::floor(v.get<double>())))
+      fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number, found " + v.dump());
     const double x = v.get<double>();
     if (!spec.allows(x)) fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number in " + spec.range() + ", found " + v.dump());
     return x;

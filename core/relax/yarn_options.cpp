@@ -107,8 +107,8 @@ std::vector<YarnOption> make_options() {
                      true, [](const YarnSettings& s) { return to_string(s.relax.method); },
                      [](YarnSettings& s, const std::string& v) { s.relax.method = parse_yarn_method(v); }));
   o.push_back(choice("stop_rule", {"leaf", "force"},
-                     "leaf (eq. 5: tolerance and stall, relative to the first step) or force (the largest force per yarn length at most "
-                     "force_tolerance × B/r³, and the energy fell less than energy_stall of itself over the last stall_window steps)",
+                     "leaf (Leaf eq. 5: the tolerance and stall, relative to the first step) or force (the largest force per yarn length at "
+                     "most the force tolerance × B/r³, and the energy fell less than the energy stall of itself over the stall window)",
                      false, [](const YarnSettings& s) { return to_string(s.relax.stop_rule); },
                      [](YarnSettings& s, const std::string& v) { s.relax.stop_rule = parse_stop_rule(v); }));
   o.push_back(real("tolerance", 0, 1, "", "Leaf eq. 5 ε1: stop when |∇E| / |∇E₀| is below this ...", true,
@@ -132,14 +132,19 @@ std::vector<YarnOption> make_options() {
   o.push_back(real("max_seconds", 0, 1e9, "s", "wall-time cap (0: none)", false, [](YarnSettings& s) -> double& { return s.relax.max_seconds; }));
   o.push_back(whole<long>("jam_steps", 0, kSteps, "steps",
                           "stop, not converged, when for this many steps in a row the guard held yarn against yarn on every step and the energy "
-                          "fell by less than jam_drop of itself over them (0: never)",
+                          "fell by less than the jam drop of itself over them (0: never)",
                           true, [](YarnSettings& s) -> long& { return s.relax.jam_steps; }));
-  o.push_back(real("jam_drop", 0, 1, "", "with jam_steps: the energy's relative fall over the window that still counts as relaxing", false,
+  o.push_back(real("jam_drop", 0, 1, "", "with the jam steps: the energy's relative fall over them that still counts as relaxing", false,
                    [](YarnSettings& s) -> double& { return s.relax.jam_drop; }));
   YarnOption move = real("max_move", 0, 10, "× r", "ε: largest move of any yarn point per step (at most half the contact margin)", false,
                          [](YarnSettings& s) -> double& { return s.relax.guard.max_move; });
   move.above_low = true;
   o.push_back(move);
+  o.push_back(real("contact_margin", 0, 100, "× r", "contact cache margin beyond touching (at least twice the movement limit)", false,
+                   [](YarnSettings& s) -> double& { return s.relax.contact_margin; }));
+  o.back().above_low = true;
+  o.push_back(real("time_step", 0, 10, "s", "Euler's step and FIRE's first step (0: 0.002 for Euler, 0.02 for FIRE)", false,
+                   [](YarnSettings& s) -> double& { return s.relax.time_step; }));
   o.push_back(flag("audit", "audit every step for pull-through with the independent topology auditor", true,
                    [](YarnSettings& s) -> bool& { return s.relax.audit; }));
   o.back().cli = "--no-audit";
@@ -162,7 +167,13 @@ std::vector<YarnOption> make_options() {
                             [](YarnSettings& s) -> double& { return s.relax.params.k_contact; });
   contact.above_low = true;
   o.push_back(contact);
-  o.push_back(real("take_up", 0.1, 10, "", "rest length of the yarn × its emitted length: below 1 the yarn pulls tighter (not used with a weight)", true,
+  o.push_back(real("k_global", 0, kStiffness, "", "mass-proportional damping (Leaf eq. 11), Euler only", false,
+                   [](YarnSettings& s) -> double& { return s.relax.params.k_global; }));
+  o.push_back(real("k_dt", 0, kStiffness, "", "tangential contact damping (Leaf eq. 12), Euler only", false,
+                   [](YarnSettings& s) -> double& { return s.relax.params.k_dt; }));
+  o.push_back(real("k_dn", 0, kStiffness, "", "normal contact damping (Leaf eq. 12), Euler only", false,
+                   [](YarnSettings& s) -> double& { return s.relax.params.k_dn; }));
+  o.push_back(real("take_up", 0.1, 10, "", "rest length of the yarn × its emitted length: below 1 the yarn pulls tighter", true,
                    [](YarnSettings& s) -> double& { return s.take_up; }));
   std::vector<std::string> weights{"none"};
   for (const auto& w : mesh::yarn_weights()) weights.push_back(w.name);

@@ -155,8 +155,8 @@ void YarnRelaxOptions::validate() const {
     throw Error("", "yarn relaxation", "the L-BFGS memory must be 1 to 100 moves, found " + std::to_string(lbfgs_memory));
   sampling.validate();
   if (guard.max_move > 0.5 * contact_margin)
-    throw Error("", "yarn relaxation", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin (" +
-                                           std::to_string(contact_margin) + " r), or pairs could meet between contact updates");
+    throw Error("", "max_move", "the movement limit ε (" + std::to_string(guard.max_move) + " r) must be at most half the contact margin, contact_margin (" +
+                                    std::to_string(contact_margin) + " r), or pairs could meet between contact updates");
   if (max_steps < 0) throw Error("", "yarn relaxation", "the step cap must not be negative");
   if (checkpoint_every < 0) throw Error("", "yarn relaxation", "the checkpoint interval must not be negative");
   if ((checkpoint_every > 0 || checkpoint_minutes > 0) && checkpoint.empty())

@@ -131,7 +131,8 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, cons
     if (n > model::kMaxContactSamples)
       throw Error("", "segment " + std::to_string(seg),
                   "a segment " + std::to_string(l) + " mm long needs more than " + std::to_string(model::kMaxContactSamples) +
-                      " contact samples: resample the yarn more finely");
+                      " contact samples: resample the yarn more finely" +
+                      (sampling.spacing > 0 ? ", or give a larger contact spacing (it is " + std::to_string(sampling.spacing) + " r)" : std::string()));
     s.sample_start.push_back(seg == 0 ? 0 : s.sample_start.back() + s.contact_samples.back());
     s.contact_samples.push_back(n);
   }

@@ -826,6 +826,18 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
     ++checked;
   }
   EXPECT_EQ(checked, static_cast<int>(job_keys.size()));
+  // A whole number written as a fraction is refused alike; JSON's 1e3 is a whole number.
+  auto r = run_skein("relax-yarn none.bcc --max-steps 1.5 -o " + (dir / "x.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--max-steps: expected a whole number, found 1.5"), std::string::npos) << r.output;
+  r = run_skein("run " + dir.write("half.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"max_steps": 1.5}})").string());
+  EXPECT_NE(r.output.find("expected a whole number, found 1.5"), std::string::npos) << r.output;
+  r = run_skein("run " + dir.write("big.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"max_steps": 2e9}})").string());
+  EXPECT_NE(r.output.find("expected a whole number in [0, 1e+09], found 2000000000.0"), std::string::npos) << r.output;
+  // Not a schema option, but no longer taken silently as the default either.
+  r = run_skein("relax-yarn none.bcc --yarn-radius -1 -o " + (dir / "x.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--yarn-radius: expected a positive number, found -1"), std::string::npos) << r.output;
 }
 
 TEST(Job, ErrorsNameTheKeyAndWhatWasExpected) {
