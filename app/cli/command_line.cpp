@@ -831,27 +831,33 @@ int run_command_line(int argc, char** argv) {
         const auto project = mesh::read_project(ry_in);
         if (!project.settings.empty()) {
           const auto saved = relax::read_yarn_settings(project.settings, ry_in);
+          std::set<std::string> present;  // the keys the project sets: only those stand in for flags
+          for (const auto& line : project.settings) present.insert(line.key);
           std::vector<std::string> taken;
-          const auto take = [&](const char* flag, auto apply) {
-            if (ry->count(flag) == 0) apply(), taken.push_back(flag);
+          const auto take = [&](const char* key, auto apply) {
+            const std::string flag = relax::yarn_option(key).flag();
+            if (present.count(std::string("yarn.") + key) && ry->count(flag) == 0) apply(), taken.push_back(flag);
           };
-          take("--method", [&] { ry_method = relax::to_string(saved.relax.method); });
-          take("--tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
-          take("--stop-scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
-          take("--max-steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
+          take("method", [&] { ry_method = relax::to_string(saved.relax.method); });
+          take("tolerance", [&] { ry_options.tolerance = saved.relax.tolerance; });
+          take("stop_scale", [&] { ry_stop_scale = saved.relax.clipped_scale ? "clipped" : "first"; });
+          take("max_steps", [&] { ry_options.max_steps = saved.relax.max_steps; });
           // A yarn weight the app saved: relaxed as --yarn WEIGHT. A weight's take-up is Munden's unless the command line
           // gives one: the app's take-up is not used with a weight, saved or given.
           if (!saved.weight.empty() && ry->count("--yarn") == 0 && ry->count("--yarn-radius") == 0)
             ry_fabric.yarn = saved.weight, ry_weight_option = "set yarn.weight " + saved.weight, taken.push_back("--yarn");
           else if (!saved.weight.empty())
             spdlog::info("{} saves the yarn weight {}: not used, the command line gives {}", ry_in, saved.weight, ry->count("--yarn") ? "--yarn" : "--yarn-radius");
-          if (ry_fabric.yarn.empty()) take("--take-up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
-          take("--no-audit", [&] { ry_no_audit = !saved.relax.audit; });
-          take("--active-set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
-          take("--contact-spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
-          take("--jam-steps", [&] { ry_options.jam_steps = saved.relax.jam_steps; });
-          take("--rings", [&] { ry_local.rings = saved.local.rings; });
-          take("--halo", [&] { ry_local.halo = saved.local.halo; });
+          if (ry_fabric.yarn.empty())
+            take("take_up", [&] { ry_take_up = saved.take_up, ry_take_up_given = true; });
+          else if (present.count("yarn.take_up") && ry->count("--take-up") == 0)
+            spdlog::info("{} saves a take-up of {}: not used with the yarn weight {}, whose take-up is Munden's", ry_in, saved.take_up, ry_fabric.yarn);
+          take("audit", [&] { ry_no_audit = !saved.relax.audit; });
+          take("active_set", [&] { ry_options.active_set.enabled = saved.relax.active_set.enabled; });
+          take("contact_spacing", [&] { ry_options.sampling.spacing = saved.relax.sampling.spacing; });
+          take("jam_steps", [&] { ry_options.jam_steps = saved.relax.jam_steps; });
+          take("rings", [&] { ry_local.rings = saved.local.rings; });
+          take("halo", [&] { ry_local.halo = saved.local.halo; });
           std::string list;
           for (const auto& flag : taken) list += (list.empty() ? "" : " ") + flag;
           spdlog::info("{} carries yarn settings (saved by the app): using them for {}", ry_in, list);
