@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -82,19 +83,9 @@ TEST(YarnCell, APeriodicPatchsAuditAndGuardTestOneCopyOfEachPairAndMissNothing) 
     apply_periodic(p.patch.map, delta, velocities);
     return delta;
   };
-  // The auditor: moves of 1.5 r make crossings; each one the whole patch finds has a copy, translated as a pair,
-  // among those the restricted auditor finds, and it finds no other.
-  const Eigen::Matrix3Xd after = p.points + periodic_move(1.5, 7);
-  TopologyAuditor whole(p.system), one_copy(p.system);
-  one_copy.restrict_to(tested);
-  const auto all = whole.crossings(p.points, after), copies = one_copy.crossings(p.points, after);
-  ASSERT_GT(copies.size(), 0u);
-  EXPECT_LT(copies.size(), all.size());
   const auto same_pair = [](const TopologyAuditor::Crossing& x, const TopologyAuditor::Crossing& y) {
     return x.segment_a == y.segment_a && x.segment_b == y.segment_b;
   };
-  for (const auto& c : copies) EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& x) { return same_pair(x, c); }));
-  EXPECT_EQ(std::adjacent_find(copies.begin(), copies.end(), same_pair), copies.end());  // each pair once
   const auto translate = [&](int from, int to) -> std::optional<Eigen::Vector3d> {  // to's points = from's + t for one t
     const auto &f = p.system.segment_points[from], &g = p.system.segment_points[to];
     for (const bool reversed : {false, true}) {  // a piece of yarn may be listed either way along it
@@ -106,16 +97,44 @@ TEST(YarnCell, APeriodicPatchsAuditAndGuardTestOneCopyOfEachPairAndMissNothing) 
     }
     return std::nullopt;
   };
-  for (const auto& x : all) {
-    const bool copied = std::any_of(copies.begin(), copies.end(), [&](const auto& c) {
-      for (const auto& [a, b] : {std::pair{c.segment_a, c.segment_b}, std::pair{c.segment_b, c.segment_a}}) {
-        const auto ta = translate(x.segment_a, a), tb = translate(x.segment_b, b);
-        if (ta && tb && (*ta - *tb).norm() < 1e-9) return true;
-      }
-      return false;
-    });
-    EXPECT_TRUE(copied) << "segments " << x.segment_a << " and " << x.segment_b;
+  // Every crossing the whole patch's auditor finds has a copy, translated as a pair, among `copies`, which holds
+  // no other and each pair once.
+  TopologyAuditor whole(p.system);
+  const auto check = [&](const Eigen::Matrix3Xd& before, const Eigen::Matrix3Xd& after, const std::vector<TopologyAuditor::Crossing>& copies,
+                         const std::string& where) {
+    const auto all = whole.crossings(before, after);
+    for (const auto& c : copies) EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& x) { return same_pair(x, c); })) << where;
+    EXPECT_EQ(std::adjacent_find(copies.begin(), copies.end(), same_pair), copies.end()) << where;
+    for (const auto& x : all) {
+      const bool copied = std::any_of(copies.begin(), copies.end(), [&](const auto& c) {
+        for (const auto& [a, b] : {std::pair{c.segment_a, c.segment_b}, std::pair{c.segment_b, c.segment_a}}) {
+          const auto ta = translate(x.segment_a, a), tb = translate(x.segment_b, b);
+          if (ta && tb && (*ta - *tb).norm() < 1e-9) return true;
+        }
+        return false;
+      });
+      EXPECT_TRUE(copied) << where << ": segments " << x.segment_a << " and " << x.segment_b;
+    }
+    return all.size();
+  };
+  // One move of 1.5 r: crossings everywhere.
+  const Eigen::Matrix3Xd after = p.points + periodic_move(1.5, 7);
+  TopologyAuditor one_copy(p.system);
+  one_copy.restrict_to(tested);
+  const auto copies = one_copy.crossings(p.points, after);
+  ASSERT_GT(copies.size(), 0u);
+  EXPECT_LT(copies.size(), check(p.points, after, copies, "one move"));
+  // Step after step, one auditor kept from step to step (its buffers are reused) on a random walk of the yarn.
+  Eigen::Matrix3Xd state = p.points;
+  long found = 0;
+  for (int step = 0; step < 30; ++step) {
+    const Eigen::Matrix3Xd next = state + periodic_move(0.9, 100 + step);
+    const auto kept = one_copy.crossings(state, next);
+    check(state, next, kept, "step " + std::to_string(step));
+    found += static_cast<long>(kept.size());
+    state = next;
   }
+  EXPECT_GT(found, 0);
   // The guard: the same move let through, testing one copy of each pair (groups hold a point with its copies);
   // a movement limit of 2 r lets the move bring pairs through each other.
   std::vector<int> groups(p.system.num_points(), -1);
