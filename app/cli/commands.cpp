@@ -18,6 +18,7 @@
 #include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "cuda/yarn_relaxer.hpp"
+#include "relax/yarn_options.hpp"
 #include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
@@ -225,6 +226,8 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
     char* end = nullptr;
     const double f = std::strtod(value.c_str(), &end);
     if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
+    const auto& take_up = relax::yarn_option("take_up");  // a factor of the same kind as --take-up, in its range
+    if (!take_up.allows(f)) throw Error("", option + " '" + text + "'", "the factor must be in " + take_up.range() + ", as --take-up's");
     out[name] = f;
   }
   return out;

@@ -835,6 +835,10 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
   EXPECT_NE(r.output.find("expected a whole number, found 1.5"), std::string::npos) << r.output;
   r = run_skein("run " + dir.write("big.json", R"({"mesh": ")" + kModels + R"(/swatch.obj", "relax_yarn": {"max_steps": 2e9}})").string());
   EXPECT_NE(r.output.find("expected a whole number in [0, 1e+09], found 2000000000.0"), std::string::npos) << r.output;
+  // A stitch type's take-up is a take-up: the same range.
+  r = run_skein("pattern " + kPatterns + "/honeycomb.knit --relax --take-up-stitch s=20 -o " + (dir / "x.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--take-up-stitch 's=20': the factor must be in [0.1, 10], as --take-up's"), std::string::npos) << r.output;
   // Not a schema option, but no longer taken silently as the default either.
   r = run_skein("relax-yarn none.bcc --yarn-radius -1 -o " + (dir / "x.bcc").string());
   EXPECT_EQ(r.status, 2);
