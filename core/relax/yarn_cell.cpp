@@ -77,10 +77,8 @@ SegmentKeys segment_keys(const YarnSystem& system, const PeriodicMap& map) {
   return out;
 }
 
-}  // namespace
-
-std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map) {
-  const auto pieces = segment_keys(system, map);
+/// repeat_segments from the segments' keys.
+std::vector<char> one_of_each(const YarnSystem& system, const SegmentKeys& pieces) {
   std::set<SegmentKeys::Key> seen;
   std::vector<char> out(system.num_segments(), 0);
   for (int s = 0; s < system.num_segments(); ++s) {
@@ -95,9 +93,13 @@ std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& m
   return out;
 }
 
+}  // namespace
+
+std::vector<char> repeat_segments(const YarnSystem& system, const PeriodicMap& map) { return one_of_each(system, segment_keys(system, map)); }
+
 std::vector<char> periodic_tested_segments(const YarnSystem& system, const PeriodicMap& map) {
-  std::vector<char> tested = repeat_segments(system, map);
   const auto pieces = segment_keys(system, map);
+  std::vector<char> tested = one_of_each(system, pieces);
   std::set<SegmentKeys::Key> repeat;
   for (int s = 0; s < system.num_segments(); ++s)
     if (tested[s] && pieces.keys[s]) repeat.insert(*pieces.keys[s]);
