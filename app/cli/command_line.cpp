@@ -285,7 +285,7 @@ int run_command_line(int argc, char** argv) {
                  "a .bcc of the same yarn in another shape whose lengths (× --take-up) are the rest lengths, instead of the input's own "
                  "(e.g. a swatch relaxed flat, then bent: the bent one relaxes with the flat yarn's lengths)");
   std::vector<std::string> ry_take_up_stitch;
-  ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8; Leaf 2018 §6.1)");
+  ry->add_option("--take-up-stitch", ry_take_up_stitch, "TYPE=F scales the yarn of one stitch type (e.g. s=0.8), TYPE:vertical=F or TYPE:horizontal=F only its loop carried up or its row's yarn (s:vertical=0.5; Leaf 2018 §6.1)");
   ry->add_option("--yarn-radius", ry_radius, "yarn radius [mm] for a project (default: a tenth of the stitch width)")->check(positive());
   FabricChoice ry_fabric;
   add_fabric(ry, ry_fabric, "a project's yarn, relaxed at its compressed contact radius with each stitch cut to Munden's loop length (docs/yarn.md)", false);
@@ -375,7 +375,7 @@ int run_command_line(int argc, char** argv) {
   add_fabric(pat, pat_fabric, "sets the yarn radius and, without --gauge, the stitch size of its standard gauge", true);
   add_yarn_option(pat, "take_up", pat_take_up, "with --relax: ");
   std::vector<std::string> pat_take_up_stitch;
-  pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), or weft=F, warp=F (Leaf 2018 §6.1)");
+  pat->add_option("--take-up-stitch", pat_take_up_stitch, "with --relax: TYPE=F scales the yarn of one stitch type (s=0.8), TYPE:vertical=F or TYPE:horizontal=F only its loop carried up or its row's yarn (s:vertical=0.5), or weft=F, warp=F (Leaf 2018 §6.1)");
   std::string pat_period;
   pat->add_option("--period", pat_period, "with --relax: the repeat's period x its emitted size, along the course x the wale (e.g. 0.9x1)");
   double pat_gamma = 1;

@@ -147,7 +147,7 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name,
   // The garment's take-up, for the stitch types this patch has.
   std::map<std::string, double> take_up_by_type;
   for (const auto& [type, factor] : stand_in.take_up_by_type)
-    if (std::count(patch.yarn.type_names.begin(), patch.yarn.type_names.end(), type)) take_up_by_type[type] = factor;
+    if (std::count(patch.yarn.type_names.begin(), patch.yarn.type_names.end(), type.substr(0, type.find(':')))) take_up_by_type[type] = factor;
   const auto system = make_yarn_system(patch.yarn, stand_in.take_up, take_up_by_type, options.sampling);
   const auto tiles = mesh::pattern_stitch_mesh(repeat, patch.tiles, patch.tiles, size);
   // The forces the garment's relaxation feels: the patch-tracking ones too (the patch has no border loops).

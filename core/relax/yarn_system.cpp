@@ -78,21 +78,35 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, cons
   sampling.validate();
   if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
   if (!(take_up > 0) || !std::isfinite(take_up)) throw Error("", "", "the yarn take-up must be positive, found " + std::to_string(take_up));
-  // Per point type: the take-up of the segments that start there.
-  std::vector<double> type_take_up(curves.type_names.size(), 1.0);
-  for (const auto& [name, factor] : take_up_by_type) {
-    if (!(factor > 0) || !std::isfinite(factor)) throw Error("", "take-up of " + name, "must be positive, found " + std::to_string(factor));
+  // Per stitch type: the take-up of its segments, of its vertical ones and of its horizontal ones (Leaf 2018
+  // §6.1: "TYPE", "TYPE:vertical", "TYPE:horizontal"; YarnCurves::point_vertical says which is which).
+  const size_t types = curves.type_names.size();
+  std::vector<double> type_take_up(types, 1.0), vertical_take_up(types, 1.0), horizontal_take_up(types, 1.0);
+  for (const auto& [key, factor] : take_up_by_type) {
+    if (!(factor > 0) || !std::isfinite(factor)) throw Error("", "take-up of " + key, "must be positive, found " + std::to_string(factor));
+    const auto colon = key.find(':');
+    const std::string name = key.substr(0, colon), part = colon == std::string::npos ? "" : key.substr(colon + 1);
+    if (!part.empty() && part != "vertical" && part != "horizontal")
+      throw Error("", "take-up of " + key, "the part after ':' must be vertical or horizontal (Leaf 2018 §6.1), found '" + part + "'");
     const auto it = std::find(curves.type_names.begin(), curves.type_names.end(), name);
     if (it == curves.type_names.end()) {
       std::string known;
       for (const auto& t : curves.type_names) known += (known.empty() ? "" : " ") + t;
-      throw Error("", "take-up of " + name, "the yarn has no stitch of that type; it has: " + known);
+      throw Error("", "take-up of " + key, "the yarn has no stitch of that type; it has: " + known);
     }
-    type_take_up[it - curves.type_names.begin()] = factor;
+    if (!part.empty() && curves.point_vertical.size() != curves.points.size())
+      throw Error("", "take-up of " + key, "this yarn does not say which of its material is vertical (yarn read from a file keeps no stitch pieces); "
+                                          "relax it from its project or pattern, or give " + name + "=F for all of the stitch's yarn");
+    auto& table = part.empty() ? type_take_up : part == "vertical" ? vertical_take_up : horizontal_take_up;
+    table[it - curves.type_names.begin()] = factor;
   }
+  // A segment's factor is its piece's: the piece that wrote the segment's owner point.
   const auto factor_at = [&](int point) {
-    const int type = point < static_cast<int>(curves.point_type.size()) ? curves.point_type[point] : -1;
-    return type >= 0 && type < static_cast<int>(type_take_up.size()) ? type_take_up[type] : 1.0;
+    const int owner = curves.segment_owner(point);
+    const int type = owner < static_cast<int>(curves.point_type.size()) ? curves.point_type[owner] : -1;
+    if (type < 0 || type >= static_cast<int>(types)) return 1.0;
+    const bool vertical = owner < static_cast<int>(curves.point_vertical.size()) && curves.point_vertical[owner];
+    return type_take_up[type] * (vertical ? vertical_take_up[type] : horizontal_take_up[type]);
   };
   YarnSystem s;
   s.radius = curves.radius;
@@ -233,6 +247,7 @@ mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>&
           out.points.push_back(in.points[p]);
           out.point_face.push_back(in.point_face[p]);
           out.point_type.push_back(in.point_type[p]);
+          if (in.point_vertical.size() == in.points.size()) out.point_vertical.push_back(in.point_vertical[p]);
           if (coloured) out.point_colour.push_back(in.point_colour[p]);
         }
         out.curve_start.push_back(static_cast<int>(out.points.size()));

@@ -60,8 +60,10 @@ struct ContactSampling {
 };
 
 /// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`,
-/// and times `take_up_by_type[name]` for segments that start in a stitch (or weft, warp) of that type (Leaf
-/// 2018 §6.1: more or less yarn for slip stitches, or along the warp or the weft). Throws skein::Error when the
+/// and times `take_up_by_type[name]` for the segments of a stitch (or weft, warp) of that type (Leaf 2018 §6.1:
+/// more or less yarn for slip stitches, or along the warp or the weft); `name:vertical` and `name:horizontal`
+/// scale only that stitch's vertical or horizontal material (mesh::YarnCurves::point_vertical), on top of
+/// `name`'s factor. A segment belongs to the piece of its owner point (segment_owner). Throws skein::Error when the
 /// yarn has no segment, a non-positive radius or take-up, coincident control points, or a take-up names a
 /// type the yarn does not have. `sampling` sets each segment's contact samples, from its shape as given.
 YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {},

@@ -16,6 +16,11 @@ int YarnCurves::yarn_of(int point) const {
   return static_cast<int>(std::upper_bound(curve_start.begin(), curve_start.end(), point) - curve_start.begin()) - 1;
 }
 
+int YarnCurves::segment_owner(int p) const {
+  const int c = yarn_of(p);
+  return p + 1 < curve_start[c + 1] ? p + 1 : p;
+}
+
 void EmitOptions::validate() const {
   if (!(std::isfinite(yarn_radius) && yarn_radius > 0)) throw Error("", "yarn radius", "must be a positive number of mm");
 }
@@ -43,6 +48,7 @@ struct Piece {
   std::vector<Eigen::Vector3d> points;  ///< both ends included
   int start = -1, end = -1;             ///< crossing nodes
   int face = -1, type = 0;
+  bool vertical = false;  ///< passes its face from the bottom edge to the top (YarnCurves::point_vertical)
 };
 
 /// The 2D canonical polygon of a face and its corners, for mean value coordinates.
@@ -212,6 +218,10 @@ private:
         piece.points.push_back(m_node_pos[id]);
         (i == 0 ? piece.start : piece.end) = id;
       }
+      const auto side = [&](size_t i) { return mp.points[i].crossing ? std::optional(mp.points[i].crossing->side) : std::nullopt; };
+      const auto first = side(0), last = side(mp.points.size() - 1);
+      using Side = Crossing::Side;
+      piece.vertical = first && last && ((*first == Side::Bottom && *last == Side::Top) || (*first == Side::Top && *last == Side::Bottom));
       if (!dropped) add_piece(std::move(piece));
     }
   }
@@ -468,6 +478,7 @@ private:
           out.points.push_back(p.points[idx]);
           out.point_face.push_back(p.face);
           out.point_type.push_back(p.type);
+          out.point_vertical.push_back(p.vertical);
         }
         const int exit_node = enter_end == 0 ? p.end : p.start;
         if (exit_node < 0 || m_node_ends[exit_node].size() < 2) break;  // a loose end
@@ -484,6 +495,7 @@ private:
         out.points.pop_back();
         out.point_face.pop_back();
         out.point_type.pop_back();
+        out.point_vertical.pop_back();
       }
       out.curve_start.push_back(static_cast<int>(out.points.size()));
       out.closed.push_back(closed);

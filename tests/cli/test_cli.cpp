@@ -839,6 +839,13 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
   r = run_skein("pattern " + kPatterns + "/honeycomb.knit --relax --take-up-stitch s=20 -o " + (dir / "x.bcc").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--take-up-stitch 's=20': the factor must be in [0.1, 10], as --take-up's"), std::string::npos) << r.output;
+  // A part of a stitch's yarn (Leaf 2018 §6.1): taken from a pattern, refused by name when misspelt.
+  r = run_skein("pattern " + kPatterns + "/honeycomb.knit --relax --no-audit --max-steps 20 --take-up-stitch s:vertical=0.3 -o " + (dir / "v.bcc").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  r = run_skein("pattern " + kPatterns + "/honeycomb.knit --relax --no-audit --max-steps 20 --take-up-stitch s:up=0.3 -o " + (dir / "u.bcc").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("take-up of s:up: the part after ':' must be vertical or horizontal"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "u.bcc"));
   // Not a schema option, but no longer taken silently as the default either.
   r = run_skein("relax-yarn none.bcc --yarn-radius -1 -o " + (dir / "x.bcc").string());
   EXPECT_EQ(r.status, 2);

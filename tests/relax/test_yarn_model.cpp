@@ -221,13 +221,51 @@ TEST(YarnSystem, TakeUpPerStitchTypeScalesOnlyThatTypesSegments) {
   const int s_type = static_cast<int>(std::find(yarn.type_names.begin(), yarn.type_names.end(), "s") - yarn.type_names.begin());
   int scaled = 0;
   for (int k = 0; k < plain.num_segments(); ++k) {
-    const bool in_slip = yarn.point_type[plain.segment_points[k][1]] == s_type;
+    const bool in_slip = yarn.point_type[yarn.segment_owner(plain.segment_points[k][1])] == s_type;
     EXPECT_NEAR(slipped.rest_length[k], plain.rest_length[k] * (in_slip ? 0.8 : 1.0), 1e-12);
     scaled += in_slip;
   }
   EXPECT_GT(scaled, 0);
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"q", 0.8}}); }).find("the yarn has no stitch of that type"), std::string::npos);
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s", -1}}); }).find("must be positive"), std::string::npos);
+}
+
+TEST(YarnSystem, TakeUpOfAStitchsVerticalOrHorizontalMaterialScalesOnlyThatPart) {
+  // Leaf 2018 §6.1: a slipped stitch holds the loop below carried up through its row (vertical material: two
+  // pieces from the bottom edge to the top, two segments each) and the row's yarn floating behind it
+  // (horizontal: one piece from the left wale edge to the right, three segments). Two slipped stitches here.
+  const auto pattern = mesh::parse_pattern("format knit\nk k k k\nk s k k\nk k k k\n", "slip.knit");
+  const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, 2, 1), mesh::StitchLibrary::bundled(), {});
+  ASSERT_EQ(yarn.point_vertical.size(), yarn.points.size());
+  const auto plain = make_yarn_system(yarn);
+  const auto vertical = make_yarn_system(yarn, 1.0, {{"s:vertical", 0.5}});
+  const auto horizontal = make_yarn_system(yarn, 1.0, {{"s:horizontal", 0.5}});
+  const auto both = make_yarn_system(yarn, 1.0, {{"s", 0.8}, {"s:vertical", 0.5}});
+  int vertical_segments = 0, horizontal_segments = 0;
+  for (int k = 0; k < plain.num_segments(); ++k) {
+    const Eigen::Vector3d d = plain.points.col(plain.segment_points[k][2]) - plain.points.col(plain.segment_points[k][1]);
+    const double v = vertical.rest_length[k] / plain.rest_length[k], h = horizontal.rest_length[k] / plain.rest_length[k];
+    if (v != 1.0) {
+      EXPECT_NEAR(v, 0.5, 1e-12);
+      EXPECT_GT(std::abs(d.y()), 2 * std::abs(d.x())) << "segment " << k << " runs along the wale";
+      EXPECT_NEAR(both.rest_length[k], 0.4 * plain.rest_length[k], 1e-12);
+      ++vertical_segments;
+    }
+    if (h != 1.0) {
+      EXPECT_NEAR(h, 0.5, 1e-12);
+      EXPECT_NEAR(v, 1.0, 0) << "segment " << k << " is vertical and horizontal";
+      EXPECT_GT(std::abs(d.x()), std::abs(d.y())) << "segment " << k << " runs along the course";
+      EXPECT_NEAR(both.rest_length[k], 0.8 * plain.rest_length[k], 1e-12);
+      ++horizontal_segments;
+    }
+  }
+  EXPECT_EQ(vertical_segments, 2 * 2 * 2);
+  EXPECT_EQ(horizontal_segments, 2 * 3);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s:up", 0.5}}); }).find("must be vertical or horizontal"), std::string::npos);
+  auto read_back = yarn;  // yarn from a .bcc knows its stitch types at most, not its pieces
+  read_back.point_vertical.clear();
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(read_back, 1.0, {{"s:vertical", 0.5}}); }).find("does not say which of its material is vertical"),
+            std::string::npos);
 }
 
 TEST(YarnSystem, RestLengthsOfAnotherShapeKeepTheirLengthsAndTakeTheNewPoints) {
