@@ -1,6 +1,6 @@
 // Local re-relaxation against a full one: a garment's yarn relaxed in full, then a share of its plain
 // stitches repainted purl (spread evenly), and the edited yarn relaxed twice: locally from the previous result
-// (relax::relax_locally, as `skein relax-yarn --warm-start`) and in full from its emission. Prints one CSV line:
+// (workflow::relax_locally, as `skein relax-yarn --warm-start`) and in full from its emission. Prints one CSV line:
 // the times, and how far apart the two results end, outside the relaxed rings and over all points, in yarn
 // radii. Usage: bench_local PROJECT.skein [PERCENT=1] [RINGS=1] [HALO=1] [ACTIVE=0]   (FIRE, guard on; ACTIVE=1: both
 // edited runs with the active set; the local run once more with every step audited, for its pull-through count)
@@ -10,13 +10,13 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "relax/yarn_local.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_local.hpp"
+#include "workflow/yarn_shape.hpp"
 
 using namespace skein;
 
@@ -28,9 +28,9 @@ struct Full {
   relax::YarnRelaxReport report;
   double seconds = 0;
 };
-Full relax_full(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const relax::YarnRelaxOptions& options) {
+Full relax_full(const mesh::StitchMesh& stitch, const relax::YarnCurves& yarn, const relax::YarnRelaxOptions& options) {
   const auto system = relax::make_yarn_system(yarn);
-  const auto targets = relax::shape_targets(stitch, yarn, options.shape);
+  const auto targets = workflow::shape_targets(stitch, yarn, options.shape);
   auto state = relax::initial_state(system, options);
   const auto start = std::chrono::steady_clock::now();
   Full out;
@@ -41,13 +41,13 @@ Full relax_full(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, co
 }
 
 /// The energy of `points` as the relaxer measures it (one evaluation, no step).
-double energy_at(const mesh::StitchMesh& stitch, const mesh::YarnCurves& yarn, const Eigen::Matrix3Xd& points, relax::YarnRelaxOptions options) {
+double energy_at(const mesh::StitchMesh& stitch, const relax::YarnCurves& yarn, const Eigen::Matrix3Xd& points, relax::YarnRelaxOptions options) {
   auto system = relax::make_yarn_system(yarn);
   options.max_steps = 0;
   options.audit = false;
   auto state = relax::initial_state(system, options);
   state.points = points;
-  return relax::make_cpu_yarn_relaxer(system, relax::shape_targets(stitch, yarn, options.shape), options)->run(state).energy;
+  return relax::make_cpu_yarn_relaxer(system, workflow::shape_targets(stitch, yarn, options.shape), options)->run(state).energy;
 }
 }  // namespace
 
@@ -57,7 +57,7 @@ int main(int argc, char** argv) try {
     return 2;
   }
   const double percent = argc > 2 ? std::stod(argv[2]) : 1.0;
-  relax::LocalRelaxOptions local;
+  workflow::LocalRelaxOptions local;
   if (argc > 3) local.rings = std::stoi(argv[3]);
   if (argc > 4) local.halo = std::stoi(argv[4]);
   const auto project = mesh::read_project(argv[1]);
@@ -84,20 +84,20 @@ int main(int argc, char** argv) try {
 
   // Timed as the full run is, without the per-step audit; then once more audited, for its count.
   const auto start = std::chrono::steady_clock::now();
-  const auto splice = relax::splice_previous(yarn1, yarn0, previous.points);
-  relax::LocalRelaxReport report;
-  const auto warm = relax::relax_locally(after, yarn1, splice, options, local, 1.0, {}, report);
+  const auto splice = workflow::splice_previous(yarn1, yarn0, previous.points);
+  workflow::LocalRelaxReport report;
+  const auto warm = workflow::relax_locally(after, yarn1, splice, options, local, 1.0, {}, report);
   const double warm_seconds = seconds_since(start);
   auto audited = options;
   audited.audit = true;
-  relax::LocalRelaxReport audit_report;
-  relax::relax_locally(after, yarn1, splice, audited, local, 1.0, {}, audit_report);
+  workflow::LocalRelaxReport audit_report;
+  workflow::relax_locally(after, yarn1, splice, audited, local, 1.0, {}, audit_report);
   report.pull_through_events = audit_report.pull_through_events;
   const auto full = relax_full(after, yarn1, options);
 
   // Differences, in yarn radii: outside the rings the local run relaxed, and over every point.
-  const auto owner = relax::owner_faces(yarn1);
-  const auto relaxed_faces = relax::face_rings(after, chosen, report.rings);
+  const auto owner = workflow::owner_faces(yarn1);
+  const auto relaxed_faces = workflow::face_rings(after, chosen, report.rings);
   double sum_out = 0, largest_out = 0, sum_all = 0, largest_all = 0;
   long n_out = 0;
   const long n = static_cast<long>(yarn1.points.size());

@@ -9,10 +9,10 @@
 
 
 #include "common/error.hpp"
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_periodic.hpp"
 
 using namespace skein;
 
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     for (int a = first; a < argc; ++a) {
       const auto pattern = mesh::read_pattern(argv[a]);
       if (pattern.format == mesh::PatternFormat::Woven) continue;  // a woven tiling has no free-border emission
-      const auto patch = relax::periodic_patch(pattern, library, {}, r);
+      const auto patch = workflow::periodic_patch(pattern, library, {}, r);
       relax::ShapeTargets targets;
       targets.periodic = patch.map;
       const auto periodic = relax_timed(relax::make_yarn_system(patch.yarn), options, targets);
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
       emit.yarn_radius = r;
       const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, n, n), library, emit);
       const auto tiled = relax_timed(relax::make_yarn_system(yarn), options, {});
-      const auto d = relax::centre_repeat_difference(patch, periodic.state.points, yarn, tiled.state.points, n);
+      const auto d = workflow::centre_repeat_difference(patch, periodic.state.points, yarn, tiled.state.points, n);
       std::printf("%s,%d,%zu,%ld,%.3f,%zu,%ld,%.3f,%.2f,%.4f,%.4f,%s\n", std::filesystem::path(argv[a]).stem().c_str(), d.points, patch.yarn.points.size(), periodic.report.steps,
                   periodic.seconds, yarn.points.size(), tiled.report.steps, tiled.seconds, tiled.seconds / periodic.seconds, d.rms / r, d.largest / r,
                   periodic.report.converged && tiled.report.converged ? "both" : periodic.report.converged ? "periodic only" : "not periodic");

@@ -3,10 +3,10 @@
 
 #include <string>
 
-#include "relax/yarn_io.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_io.hpp"
 
 namespace {
 const std::string kModels = SKEIN_MODELS_DIR;
@@ -32,7 +32,7 @@ void emit_sweater(benchmark::State& state) {
 
 void yarn_stats_sweater(benchmark::State& state) {
   const auto y = skein::mesh::emit_yarn(sweater(), skein::mesh::StitchLibrary::bundled(), {});
-  for (auto _ : state) benchmark::DoNotOptimize(skein::relax::yarn_stats(y).min_segment_distance);
+  for (auto _ : state) benchmark::DoNotOptimize(skein::workflow::yarn_stats(y).min_segment_distance);
 }
 }  // namespace
 

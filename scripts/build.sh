@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${SKEIN_CMAKE_ARGS:-} >/dev/null
+cmake --preset ci ${SKEIN_CMAKE_ARGS:-} >/dev/null
 cmake --build build

@@ -7,8 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 scripts/install-deps.sh
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DSKEIN_FUZZ=ON -DSKEIN_CUDA=OFF -DSKEIN_GUI=OFF -DSKEIN_TESTS=OFF -DSKEIN_BENCH=OFF >/dev/null
+cmake --preset fuzz >/dev/null
 readers=(pattern project job sweep bcc ids stitch_model checkpoint mesh smocking)
 cmake --build build-fuzz --target "${readers[@]/#/fuzz_}"
 declare -A seeds=([pattern]=patterns [project]="models fuzz/seeds/project" [job]=jobs [sweep]=jobs [bcc]=fuzz/seeds/bcc [ids]=fuzz/seeds/ids [stitch_model]=stitches [checkpoint]=fuzz/seeds/checkpoint [mesh]=fuzz/seeds/mesh [smocking]="patterns/smocking fuzz/seeds/smocking")

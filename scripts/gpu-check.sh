@@ -16,7 +16,7 @@ bundle=build-gpu/bundle
 
 if [[ "${1:-}" == bundle ]]; then
   scripts/install-deps.sh
-  cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DSKEIN_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DSKEIN_BENCH=OFF >/dev/null
+  cmake --preset gpu-check >/dev/null
   cmake --build build-gpu --target skein test_cuda
   rm -rf "$bundle" && mkdir -p "$bundle/bin" "$bundle/lib"
   cp build-gpu/bin/skein build-gpu/bin/test_cuda "$bundle/bin/"

@@ -24,28 +24,29 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "cuda/device.hpp"
-#include "relax/mesh_relax.hpp"
 #include "relax/yarn_audit.hpp"
-#include "relax/yarn_options.hpp"
-#include "relax/yarn_settings.hpp"
-#include "relax/yarn_standin.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_io.hpp"
-#include "relax/yarn_local.hpp"
-#include "relax/yarn_periodic.hpp"
-#include "stitchmesh/knit_field.hpp"
 #include "render/chart_view.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "skein/config.hpp"
 #include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "surface/mesh_relax.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_local.hpp"
+#include "workflow/yarn_options.hpp"
+#include "workflow/yarn_periodic.hpp"
+#include "workflow/yarn_settings.hpp"
+#include "workflow/yarn_shape.hpp"
+#include "workflow/yarn_standin.hpp"
 
 namespace fs = std::filesystem;
 using namespace skein;
@@ -58,13 +59,13 @@ namespace {
 /// in jobs, sweeps, projects and the app. `prefix` says when it applies ("with --relax: "), `suffix` adds what only this command does.
 template <class T>
 CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, const std::string& prefix = "", const std::string& suffix = "") {
-  const auto& spec = relax::yarn_option(key);
+  const auto& spec = workflow::yarn_option(key);
   const std::string unit = spec.unit.empty() ? "" : " [" + spec.unit + "]";
   auto* option = app->add_option(spec.flag(), target, prefix + spec.help + unit + suffix);
-  if (spec.kind == relax::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
+  if (spec.kind == workflow::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
   option->check(CLI::Validator(
       [&spec](std::string& text) -> std::string {
-        const bool whole = spec.kind == relax::YarnOption::Kind::Integer;
+        const bool whole = spec.kind == workflow::YarnOption::Kind::Integer;
         const std::string expected = whole ? "expected a whole number, found " : "expected a number, found ";
         double x = 0;
         try {
@@ -219,7 +220,7 @@ int run_command_line(int argc, char** argv) {
   // skein relax-mesh
   auto* relax_cmd = app.add_subcommand("relax-mesh", "relax a stitch mesh on the limit surface of its input mesh (Yuksel 2012 §6.1)");
   std::string relax_in, relax_out, relax_png, relax_png_before, relax_ply, relax_report;
-  relax::MeshRelaxOptions relax_options;
+  surface::MeshRelaxOptions relax_options;
   relax_cmd->add_option("PROJECT", relax_in, ".skein project with an input mesh and a stitch mesh")->required();
   relax_cmd->add_option("-o,--output", relax_out, "project to write, with the relaxed stitch mesh")->required();
   relax_cmd->add_option("--png", relax_png, "stretch picture after relaxation (area strain: blue compressed, red stretched)");
@@ -311,14 +312,14 @@ int run_command_line(int argc, char** argv) {
       ->capture_default_str();
   add_yarn_option(ry, "contact_spacing", ry_options.sampling.spacing);
   std::string ry_warm, ry_warm_project;
-  relax::LocalRelaxOptions ry_local;
+  workflow::LocalRelaxOptions ry_local;
   ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
                                           "and --rings rings around them");
   ry->add_option("--warm-project", ry_warm_project, "with --warm-start: the project its yarn was emitted from, before the edits");
   add_yarn_option(ry, "rings", ry_local.rings, "with --warm-start: ");
   add_yarn_option(ry, "halo", ry_local.halo, "with --warm-start: ");
   bool ry_stand_in = false;
-  relax::StandInOptions ry_stand_in_options;
+  workflow::StandInOptions ry_stand_in_options;
   ry->add_flag("--stand-in", ry_stand_in,
                "a fast preview, not a relaxation: each repeating pattern's periodic patch (stockinette, rib, seed ...) relaxed and mapped over "
                "the faces knitted in it; the output is marked as a preview");
@@ -715,7 +716,7 @@ int run_command_line(int argc, char** argv) {
     if (*stats) {
       json j;
       if (is_bcc(stats_in)) {
-        j = yarn_json(relax::read_bcc(stats_in));
+        j = yarn_json(workflow::read_bcc(stats_in));
       } else if (is_project(stats_in)) {
         const auto project = mesh::read_project(stats_in);
         if (project.stitch) j = stats_json(*project.stitch);
@@ -756,12 +757,12 @@ int run_command_line(int argc, char** argv) {
       auto project = mesh::read_project(relax_in);
       if (!project.input || !project.stitch) throw Error(relax_in, "", "needs an input mesh and a stitch mesh (run 'skein stitch' first)");
       Stopwatch t;
-      relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, relax_options);
+      surface::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, relax_options);
       spdlog::info("attached {} stitch vertices to the limit surface; rest r_course = {:.3f} mm, r_wale = {:.3f} mm ({:.2f} s)",
                    project.stitch->vertices.size(), relaxer.r_course(), relaxer.r_wale(), t.seconds());
       if (!relax_png_before.empty()) render_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale(), relax_png_before);
       t = {};
-      const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+      const auto report = relaxer.run([&](const surface::MeshRelaxStep& s) {
         spdlog::info("step {:4d}  energy {:.6g}  largest move {:.4f} mm  cg {:3d}  h {:.3g}", s.step, s.energy, s.max_displacement, s.cg_iterations, s.time_step);
       });
       spdlog::info("{} after {} steps ({:.2f} s)", report.converged ? "converged" : "stopped at the step cap", report.steps.size(), t.seconds());
@@ -772,7 +773,7 @@ int run_command_line(int argc, char** argv) {
       spdlog::info("wrote {}", relax_out);
       if (!relax_png.empty()) render_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale(), relax_png);
       if (!relax_ply.empty()) {
-        const auto strain = relax::face_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale());
+        const auto strain = surface::face_stretch(*project.stitch, relaxer.r_course(), relaxer.r_wale());
         render::write_ply(*project.stitch, stretch_colors(strain), {{"edge_strain", strain.edge_strain}, {"area_strain", strain.area_strain}}, relax_ply);
         spdlog::info("wrote {}", relax_ply);
       }
@@ -811,7 +812,7 @@ int run_command_line(int argc, char** argv) {
         spdlog::info("wrote {}", yarn_tubes);
       }
       if (!yarn_ids.empty()) {
-        relax::write_point_ids(yarn, *mesh::read_project(yarn_in).stitch, yarn_ids);
+        workflow::write_point_ids(yarn, *mesh::read_project(yarn_in).stitch, yarn_ids);
         spdlog::info("wrote {}", yarn_ids);
       }
       if (!yarn_png.empty()) render_yarn_tubes(yarn, yarn_png,
@@ -830,12 +831,12 @@ int run_command_line(int argc, char** argv) {
         // The yarn settings the app saved with the project stand where the command line gives none.
         const auto project = mesh::read_project(ry_in);
         if (!project.settings.empty()) {
-          const auto saved = relax::read_yarn_settings(project.settings, ry_in);
+          const auto saved = workflow::read_yarn_settings(project.settings, ry_in);
           std::set<std::string> present;  // the keys the project sets: only those stand in for flags
           for (const auto& line : project.settings) present.insert(line.key);
           std::vector<std::string> taken;
           const auto take = [&](const char* key, auto apply) {
-            const std::string flag = relax::yarn_option(key).flag();
+            const std::string flag = workflow::yarn_option(key).flag();
             if (present.count(std::string("yarn.") + key) && ry->count(flag) == 0) apply(), taken.push_back(flag);
           };
           take("method", [&] { ry_method = relax::to_string(saved.relax.method); });
@@ -885,25 +886,25 @@ int run_command_line(int argc, char** argv) {
       if (!ry_checkpoint.empty() && ry_options.checkpoint_every == 0 && ry_options.checkpoint_minutes == 0) ry_options.checkpoint_every = 500;
       ry_options.validate();
       Stopwatch t;
-      mesh::YarnCurves yarn;
+      relax::YarnCurves yarn;
       relax::ShapeTargets targets;
       if (!is_bcc(ry_in) && !is_project(ry_in)) throw Error(ry_in, "", "relax-yarn reads a .skein project or .bcc yarn");
       if (!ry_ids.empty() && is_bcc(ry_in)) throw Error("", "--ids", "names each control point's stitch face: give a .skein project (" + ry_in + " is bare yarn)");
       if (!ry_ids.empty()) check_writable(ry_ids);
       std::optional<mesh::StitchMesh> ids_mesh;  // the stitch mesh the yarn was emitted from, for --ids
-      const auto write_ids = [&](const mesh::YarnCurves& written) {
+      const auto write_ids = [&](const relax::YarnCurves& written) {
         if (ry_ids.empty()) return;
-        relax::write_point_ids(written, *ids_mesh, ry_ids);
+        workflow::write_point_ids(written, *ids_mesh, ry_ids);
         spdlog::info("wrote {}", ry_ids);
       };
       if (is_bcc(ry_in)) {
-        yarn = relax::read_bcc(ry_in);
+        yarn = workflow::read_bcc(ry_in);
         if (!ry_no_shape) spdlog::info("{} is bare yarn: no stitch faces, so no shape preservation", ry_in);
       } else {
         const auto project = mesh::read_project(ry_in);
         if (!project.stitch) throw Error(ry_in, "", "holds no stitch mesh; run 'skein stitch' first");
         yarn = yarn_of(ry_in, ry_radius, ry_stitches);
-        if (!ry_no_shape) targets = relax::shape_targets(*project.stitch, yarn, ry_options.shape);
+        if (!ry_no_shape) targets = workflow::shape_targets(*project.stitch, yarn, ry_options.shape);
         ids_mesh = *project.stitch;
       }
       if (!ry_rest_lengths.empty() && (ry_stand_in || !ry_warm.empty()))
@@ -914,16 +915,16 @@ int run_command_line(int argc, char** argv) {
         if (!ry_resume.empty()) throw Error("", "--warm-start", "does not go with --resume");
         const auto project = mesh::read_project(ry_in);
         const auto previous_emitted = yarn_of(ry_warm_project, ry_radius, ry_stitches);
-        const auto previous = relax::read_bcc(ry_warm);
+        const auto previous = workflow::read_bcc(ry_warm);
         if (previous.curve_start != previous_emitted.curve_start)
           throw Error(ry_warm, "", "holds other curves than the yarn of " + ry_warm_project + " (curve or point counts differ): it was not relaxed from it");
         Eigen::Matrix3Xd previous_points(3, previous.points.size());
         for (size_t p = 0; p < previous.points.size(); ++p) previous_points.col(p) = previous.points[p];
-        const auto splice = relax::splice_previous(yarn, previous_emitted, previous_points);
+        const auto splice = workflow::splice_previous(yarn, previous_emitted, previous_points);
         spdlog::info("warm start from {}: {} of {} control points emitted as before, {} new", ry_warm, yarn.points.size() - splice.changed(),
                      yarn.points.size(), splice.changed());
-        relax::LocalRelaxReport local;
-        const auto points = relax::relax_locally(*project.stitch, yarn, splice, ry_options, ry_local, ry_take_up,
+        workflow::LocalRelaxReport local;
+        const auto points = workflow::relax_locally(*project.stitch, yarn, splice, ry_options, ry_local, ry_take_up,
                                                  parse_take_up("--take-up-stitch", ry_take_up_stitch), local);
         if (local.stopped_by != relax::StopReason::UnsafeSplice) {
           const auto out = relax::with_points(yarn, points);
@@ -953,12 +954,12 @@ int run_command_line(int argc, char** argv) {
         if (!ry_resume.empty()) throw Error("", "--stand-in", "does not go with --resume");
         const auto project = mesh::read_project(ry_in);
         const auto& library = ry_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(ry_stitches);
-        relax::StandInReport stand_in;
+        workflow::StandInReport stand_in;
         ry_stand_in_options.take_up = ry_take_up;
         ry_stand_in_options.take_up_by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
         for (const auto& file : ry_stand_in_patterns) ry_stand_in_options.patterns.push_back(mesh::read_pattern(file));
         const Eigen::Matrix3Xd points =
-            relax::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
+            workflow::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
         // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
         const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
         auto probe = ry_options;
@@ -996,7 +997,7 @@ int run_command_line(int argc, char** argv) {
         const auto by_type = parse_take_up("--take-up-stitch", ry_take_up_stitch);
         return ry_rest_lengths.empty()
                    ? relax::make_yarn_system(yarn, take_up, by_type, ry_options.sampling)
-                   : relax::with_rest_lengths_of(relax::make_yarn_system(relax::read_bcc(ry_rest_lengths), take_up, by_type, ry_options.sampling),
+                   : relax::with_rest_lengths_of(relax::make_yarn_system(workflow::read_bcc(ry_rest_lengths), take_up, by_type, ry_options.sampling),
                                                  yarn, ry_rest_lengths);
       };
       auto system = make_system(ry_take_up);
@@ -1009,12 +1010,12 @@ int run_command_line(int argc, char** argv) {
         const int stitches = static_cast<int>(ids_mesh->faces.size());
         ry_extra["fabric"] = {{"yarn", ry_fabric.yarn}, {"radius_mm", ry_radius_out}, {"contact_radius_mm", ry_radius}, {"munden_loop_length_mm", munden}};
         if (!ry_take_up_given) {
-          ry_take_up *= relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, ry_in,
+          ry_take_up *= workflow::take_up_to_munden(workflow::garment_loop_length(system, stitches), munden, ry_in,
                                                  ry_weight_option == "--yarn" ? "--yarn " + ry_fabric.yarn : ry_weight_option);
           system = make_system(ry_take_up);
           ry_extra["fabric"]["take_up_to_munden"] = ry_take_up;
         }
-        const double loop = relax::garment_loop_length(system, stitches);
+        const double loop = workflow::garment_loop_length(system, stitches);
         ry_extra["fabric"]["yarn_per_stitch_mm"] = loop;
         spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f}: {:.2f} mm a stitch (Munden's loop length {:.2f} mm)",
                      ry_fabric.yarn, ry_radius, mesh::kYarnCompression, ry_radius_out, ry_take_up, loop, munden);
@@ -1105,7 +1106,7 @@ int run_command_line(int argc, char** argv) {
       if (fabric.size) pat_size = *fabric.size;
       if (fabric.radius) pat_radius = *fabric.radius;
       const double radius = pat_radius > 0 ? pat_radius : 0.1 * pat_size.width;
-      mesh::YarnCurves yarn;
+      relax::YarnCurves yarn;
       relax::ShapeTargets targets;
       json pat_extra = {{"pattern", pattern.name}};
       const auto& library = pat_stitches.empty() ? mesh::StitchLibrary::bundled() : mesh::StitchLibrary::load(pat_stitches);
@@ -1117,7 +1118,7 @@ int run_command_line(int argc, char** argv) {
       if (preview && (!pat_relax || pat_tiled)) throw Error("", "--preview", "needs --relax on the periodic patch (not --tiled)");
       check_yarn_output(pat_out);  // before any work: a relaxation is not lost to a name the writer refuses
       if (!pat_preview.empty()) check_yarn_output(pat_preview);
-      std::optional<relax::PeriodicPatch> patch_kept;  // for the preview
+      std::optional<workflow::PeriodicPatch> patch_kept;  // for the preview
       std::optional<mesh::StitchMesh> ids_mesh;        // for --ids: the tiling's stitch mesh
       if (!pat_ids.empty()) {
         if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "--ids", "names each control point's stitch face, and a woven pattern has none");
@@ -1127,13 +1128,13 @@ int run_command_line(int argc, char** argv) {
       }
       const auto write_ids = [&] {
         if (pat_ids.empty()) return;
-        relax::write_point_ids(yarn, *ids_mesh, pat_ids);
+        workflow::write_point_ids(yarn, *ids_mesh, pat_ids);
         spdlog::info("wrote {}", pat_ids);
       };
       Eigen::Vector2d period_scale(1, 1);
       if (pat_relax && !pat_tiled) {
-        auto patch = pattern.format == mesh::PatternFormat::Woven ? relax::periodic_woven_patch(pattern, 4 * radius, sim_radius)
-                                                                  : relax::periodic_patch(pattern, library, pat_size, sim_radius);
+        auto patch = pattern.format == mesh::PatternFormat::Woven ? workflow::periodic_woven_patch(pattern, 4 * radius, sim_radius)
+                                                                  : workflow::periodic_patch(pattern, library, pat_size, sim_radius);
         if (preview) patch_kept = patch;
         spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
                      std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
@@ -1150,14 +1151,14 @@ int run_command_line(int argc, char** argv) {
         mesh::EmitOptions emit;
         emit.yarn_radius = sim_radius;
         yarn = mesh::emit_yarn(stitch_mesh, library, emit);
-        targets = relax::shape_targets(stitch_mesh, yarn, pat_options.shape);
+        targets = workflow::shape_targets(stitch_mesh, yarn, pat_options.shape);
         ids_mesh = stitch_mesh;
       }
       if (!fabric.report.is_null()) pat_extra["fabric"] = fabric.report;
       spdlog::info("{}: {} x {} {}: {} yarns, {} control points", pattern.name, pattern.width(), pattern.height(),
                    pattern.whole ? "piece (cast on x rows)" : "repeat", yarn.curves(), yarn.points.size());
       // Yarn in colours: how much of each, as emitted (the tiling's, or with --relax the patch's).
-      const auto colour_report = [&](const mesh::YarnCurves& y) {
+      const auto colour_report = [&](const relax::YarnCurves& y) {
         json colours = json::array();
         const auto length = mesh::yarn_length_by_colour(y);
         for (size_t k = 0; k < pattern.palette.size(); ++k)
@@ -1189,7 +1190,7 @@ int run_command_line(int argc, char** argv) {
           pat_extra["fabric"]["contact_radius_mm"] = sim_radius / pat_gamma;
           if (!targets.periodic.empty() && pat->count("--take-up") == 0 && pat_extra["fabric"].contains("munden_loop_length_mm")) {
             const double loop = patch_loop_length(system, targets.periodic, {pattern.width(), pattern.height()}) / pat_gamma;
-            pat_take_up = relax::take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
+            pat_take_up = workflow::take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
             system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
             pat_extra["fabric"]["take_up_to_munden"] = pat_take_up;
             spdlog::info("{} yarn: contact radius {:.3g} mm ({} of {:.3g}), take-up {:.3f} to Munden's loop length {:.2f} mm", pat_fabric.yarn,
@@ -1219,7 +1220,7 @@ int run_command_line(int argc, char** argv) {
                            ? mesh::woven_yarn(pattern, across, up, 4 * radius, sim_radius)
                            : mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, across, up, pat_size), library, {.yarn_radius = sim_radius});
           if (pattern.format == mesh::PatternFormat::Woven) mesh::colour_woven_yarn(tiled, pattern, across, up);
-          const auto placed = relax::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
+          const auto placed = workflow::tile_relaxed_patch(*patch_kept, state.points, tiled, period_scale, pat_options.period.free ? &state.period : nullptr);
           auto out = relax::with_points(tiled, placed.points / pat_gamma);
           out.radius = compressed ? radius : out.radius / pat_gamma;
           if (!pat_preview.empty()) write_yarn(out, pat_preview);
@@ -1255,10 +1256,10 @@ int run_command_line(int argc, char** argv) {
       return 0;
     }
     if (*audit) {
-      const auto before = relax::read_bcc(audit_before), after = relax::read_bcc(audit_after);
+      const auto before = workflow::read_bcc(audit_before), after = workflow::read_bcc(audit_after);
       if (before.curve_start != after.curve_start || before.closed != after.closed)
         throw Error(audit_after, "", "holds other curves than " + audit_before + " (curve count, point counts or closed flags differ)");
-      const auto ids = audit_ids.empty() ? std::vector<relax::PointId>{} : relax::read_point_ids(audit_ids, before);
+      const auto ids = audit_ids.empty() ? std::vector<workflow::PointId>{} : workflow::read_point_ids(audit_ids, before);
       const auto system = relax::make_yarn_system(before);
       Eigen::Matrix3Xd q1(3, system.num_points());
       for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
@@ -1285,13 +1286,13 @@ int run_command_line(int argc, char** argv) {
                   << " pieces, centrelines nearly touching along a stretch: counted as crossings)";
       std::cout << "\n";
       // With the ids: a segment's stitch is its first point's, else its second's (a point of no face has none).
-      const auto stitch_of = [&](int segment) -> const relax::PointId* {
+      const auto stitch_of = [&](int segment) -> const workflow::PointId* {
         for (int k : {1, 2})
           if (const int p = system.segment_points[segment][k]; ids[p].face >= 0) return &ids[p];
         return nullptr;
       };
       const auto describe = [&](int segment) {
-        const relax::PointId* id = ids.empty() ? nullptr : stitch_of(segment);
+        const workflow::PointId* id = ids.empty() ? nullptr : stitch_of(segment);
         return id ? " [face " + std::to_string(id->face) + ", row " + std::to_string(id->row) + ", " + id->type + "]" : std::string();
       };
       for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {

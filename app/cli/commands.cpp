@@ -18,11 +18,11 @@
 #include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "cuda/yarn_relaxer.hpp"
-#include "relax/yarn_options.hpp"
-#include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "stitchmesh/mesh_repair.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_options.hpp"
 
 namespace skein::cli {
 
@@ -110,7 +110,7 @@ render::View view_named(const std::string& name) {
   return view;
 }
 
-void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views,
+void render_yarn_tubes(const relax::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views,
                        int panel) {
   Stopwatch t;
   render::View view = view_named(views);
@@ -126,7 +126,7 @@ void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, ren
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
-std::vector<Eigen::Vector3f> stretch_colors(const relax::FaceStretch& strain) {
+std::vector<Eigen::Vector3f> stretch_colors(const surface::FaceStretch& strain) {
   std::vector<Eigen::Vector3f> colors;
   colors.reserve(strain.area_strain.size());
   for (double a : strain.area_strain) colors.push_back(render::strain_color(a));
@@ -135,15 +135,15 @@ std::vector<Eigen::Vector3f> stretch_colors(const relax::FaceStretch& strain) {
 
 void render_stretch(const mesh::StitchMesh& sm, double r_course, double r_wale, const std::string& path) {
   Stopwatch t;
-  const auto colors = stretch_colors(relax::face_stretch(sm, r_course, r_wale));
+  const auto colors = stretch_colors(surface::face_stretch(sm, r_course, r_wale));
   render::write_png(render::draw(render::stitch_polygons(sm, colors), render::View{}), path);
   spdlog::info("wrote {} ({:.2f} s)", path, t.seconds());
 }
 
 bool is_bcc(const fs::path& path) { return path.extension() == ".bcc"; }
 
-mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report) {
-  if (is_bcc(path)) return relax::read_bcc(path);
+relax::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report) {
+  if (is_bcc(path)) return workflow::read_bcc(path);
   const auto project = mesh::read_project(path);
   if (!project.stitch) throw Error(path.string(), "", "holds no stitch mesh; run 'skein stitch' first");
   mesh::EmitOptions options;
@@ -152,8 +152,8 @@ mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string&
   return mesh::emit_yarn(*project.stitch, library, options, report);
 }
 
-json yarn_json(const mesh::YarnCurves& yarn) {
-  const auto s = relax::yarn_stats(yarn);
+json yarn_json(const relax::YarnCurves& yarn) {
+  const auto s = workflow::yarn_stats(yarn);
   return {{"kind", "yarn"},
           {"curves", s.curves},
           {"closed_curves", s.closed_curves},
@@ -170,23 +170,23 @@ void check_yarn_output(const std::string& path) {
   check_writable(path);
 }
 
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview, const std::string& unit) {
+void write_yarn(const relax::YarnCurves& yarn, const std::string& path, bool preview, const std::string& unit) {
   check_yarn_output(path);
-  if (fs::path(path).extension() == ".bcc") relax::write_bcc(yarn, path, preview);
-  else relax::write_obj_polylines(yarn, path, preview, unit);
+  if (fs::path(path).extension() == ".bcc") workflow::write_bcc(yarn, path, preview);
+  else workflow::write_obj_polylines(yarn, path, preview, unit);
 }
 
-render::YarnColor own_colours(const mesh::YarnCurves& yarn) {
+render::YarnColor own_colours(const relax::YarnCurves& yarn) {
   return yarn.point_colour.empty() ? render::YarnColor::StitchType : render::YarnColor::Colour;
 }
 
-void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale, const std::string& unit) {
+void write_tubes(const relax::YarnCurves& yarn, const std::string& path, double scale, const std::string& unit) {
   const auto ext = fs::path(path).extension();
-  if (ext == ".glb" || ext == ".gltf") return relax::write_tube_gltf(yarn, path);  // metres, whatever the scale
+  if (ext == ".glb" || ext == ".gltf") return workflow::write_tube_gltf(yarn, path);  // metres, whatever the scale
   auto scaled = yarn;
   for (auto& p : scaled.points) p *= scale;
   scaled.radius *= scale;
-  relax::write_tube_obj(scaled, path, {.unit = unit});
+  workflow::write_tube_obj(scaled, path, {.unit = unit});
 }
 
 std::pair<int, int> parse_rows(const std::string& s) {
@@ -226,7 +226,7 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
     char* end = nullptr;
     const double f = std::strtod(value.c_str(), &end);
     if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
-    const auto& take_up = relax::yarn_option("take_up");  // a factor of the same kind as --take-up, in its range
+    const auto& take_up = workflow::yarn_option("take_up");  // a factor of the same kind as --take-up, in its range
     if (!take_up.allows(f)) throw Error("", option + " '" + text + "'", "the factor must be in " + take_up.range() + ", as --take-up's");
     out[name] = f;
   }
@@ -326,7 +326,7 @@ const std::atomic<bool>* install_interrupt_handlers() {
 
 int interrupt_signal() { return g_signal; }
 
-RelaxOutcome relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                              const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
   std::unique_ptr<std::ofstream> log;
   if (!run.log.empty()) {

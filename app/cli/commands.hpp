@@ -15,8 +15,6 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
-#include "relax/garment_fabric.hpp"
-#include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
 #include "render/raster.hpp"
 #include "render/stitch_view.hpp"
@@ -25,6 +23,8 @@
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/project.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "surface/mesh_relax.hpp"
+#include "workflow/garment_fabric.hpp"
 
 namespace skein::cli {
 
@@ -80,7 +80,7 @@ void log_face_problems(const std::string& file, const mesh::InputMesh& mesh, con
 json stats_json(const mesh::StitchMesh& sm);
 json labels_json(const mesh::InputMesh& m, const mesh::Labeling& labels);
 json mesh_json(const mesh::InputMesh& m);
-json yarn_json(const mesh::YarnCurves& yarn);
+json yarn_json(const relax::YarnCurves& yarn);
 json guard_json(const relax::GuardCounters& g);
 /// Writes JSON atomically, or to stdout for "-".
 void write_json(const json& j, const std::string& path);
@@ -90,28 +90,28 @@ void print_text(const json& j, const std::string& prefix);
 /// "garment": three-quarter front and back-side; "flat": straight front and back (for swatches); "front": the
 /// straight front alone; "three": front, back and a three-quarter view from above the front.
 render::View view_named(const std::string& name);
-void render_yarn_tubes(const mesh::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
+void render_yarn_tubes(const relax::YarnCurves& yarn, const std::string& path, render::YarnColor color, const std::string& views = "garment",
                        int panel = 900);
 void render_stitch_mesh(const mesh::StitchMesh& sm, const std::string& path, render::ColorBy color, const std::string& views = "garment");
 /// Area-strain colours per face (blue compressed, white at rest, red stretched).
-std::vector<Eigen::Vector3f> stretch_colors(const relax::FaceStretch& strain);
+std::vector<Eigen::Vector3f> stretch_colors(const surface::FaceStretch& strain);
 /// The stretch picture of a stitch mesh against the rest size of mesh relaxation.
 void render_stretch(const mesh::StitchMesh& sm, double r_course, double r_wale, const std::string& path);
 
 /// Yarn from a .bcc file, or emitted from a project's stitch mesh.
-mesh::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr);
+relax::YarnCurves yarn_of(const fs::path& path, double radius, const std::string& stitches, mesh::EmitReport* report = nullptr);
 /// Writes yarn as .bcc or .obj polylines, by the extension; `preview` marks it as placed for a preview, not
-/// relaxed (relax::write_bcc).
-void write_yarn(const mesh::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
+/// relaxed (workflow::write_bcc).
+void write_yarn(const relax::YarnCurves& yarn, const std::string& path, bool preview = false, const std::string& unit = "mm");
 /// Refuses, before any work, a yarn output write_yarn would refuse at the end: a name that is not .bcc or .obj,
 /// or a folder that cannot be written.
 void check_yarn_output(const std::string& path);
 /// How a yarn picture is coloured unless asked otherwise: in the yarn's own colours when it has them
 /// (patterns/FORMAT.md, "Colour"), else by stitch type.
-render::YarnColor own_colours(const mesh::YarnCurves& yarn);
+render::YarnColor own_colours(const relax::YarnCurves& yarn);
 /// Writes the yarn's tubes for any renderer: glTF 2.0 when `path` ends in .glb or .gltf (in metres), else OBJ with
 /// its coordinates times `scale`, said to be in `unit`; yarn in colours gets a material per colour (a .mtl beside the OBJ).
-void write_tubes(const mesh::YarnCurves& yarn, const std::string& path, double scale = 1, const std::string& unit = "mm");
+void write_tubes(const relax::YarnCurves& yarn, const std::string& path, double scale = 1, const std::string& unit = "mm");
 
 /// "A:B" (inclusive) or "A" → row ids.
 std::pair<int, int> parse_rows(const std::string& s);
@@ -168,7 +168,7 @@ struct RelaxOutcome {
 /// Relaxes `state` with the backend asked for, with progress and the per-step log (appended to when the state
 /// goes on from a checkpoint), then writes the yarn, the JSON report and the picture; an interrupted run writes
 /// only its report (its checkpoint holds the state).
-RelaxOutcome relax_and_write(const mesh::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
+RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                              const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run);
 /// The exit status of a yarn run that stopped so: 0, 1 when it diverged, 128 + the signal when interrupted.
 int exit_status(relax::StopReason stopped_by);

@@ -18,20 +18,20 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "relax/yarn_checkpoint.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/fabric.hpp"
 #include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
+#include "workflow/yarn_shape.hpp"
 
 namespace skein::cli {
 namespace {
 
-relax::MeshRelaxOptions mesh_options(const Keys& k) {
+surface::MeshRelaxOptions mesh_options(const Keys& k) {
   k.only({"alpha", "aspect", "k_stretch", "k_shear", "k_wale", "k_fold", "max_steps", "tolerance", "max_move", "cg_iterations"});
-  relax::MeshRelaxOptions o;
+  surface::MeshRelaxOptions o;
   o.alpha = k.number("alpha", o.alpha, 1e-3, 1);
   o.aspect = k.number("aspect", o.aspect, 1e-3, 1e3);
   o.k_stretch = k.number("k_stretch", o.k_stretch, 0, 1e6);
@@ -50,14 +50,14 @@ relax::YarnRelaxOptions yarn_options(const Keys& k, std::string& backend) {
           "energy_stall", "jam_steps", "jam_drop", "max_move", "audit", "active_set",
           "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch", "k_length", "k_contact"});
   relax::YarnRelaxOptions o;
-  o.method = relax::parse_yarn_method(k.choice("method", "fire", relax::yarn_option("method").choices));
+  o.method = relax::parse_yarn_method(k.choice("method", "fire", workflow::yarn_option("method").choices));
   backend = k.choice("backend", "auto", {"auto", "cpu", "cuda"});
   o.max_steps = static_cast<long>(k.option("max_steps", o.max_steps));
   o.max_seconds = k.option("max_seconds", 0);
   o.tolerance = k.option("tolerance", o.tolerance);
   o.stall = k.option("stall", o.stall);
-  o.clipped_scale = k.choice("stop_scale", "first", relax::yarn_option("stop_scale").choices) == "clipped";
-  o.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "leaf", relax::yarn_option("stop_rule").choices));
+  o.clipped_scale = k.choice("stop_scale", "first", workflow::yarn_option("stop_scale").choices) == "clipped";
+  o.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "leaf", workflow::yarn_option("stop_rule").choices));
   o.force_tolerance = k.option("force_tolerance", o.force_tolerance);
   o.stall_window = static_cast<long>(k.option("stall_window", o.stall_window));
   o.energy_stall = k.option("energy_stall", o.energy_stall);
@@ -450,11 +450,11 @@ int run_job(const Job& job, bool resume, bool progress) {
       run.stage("relax the stitch mesh", [&] {
         auto options = *job.relax_mesh;
         options.interrupt = interrupt;
-        relax::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, options);
+        surface::MeshRelaxer relaxer(project.input->points(), project.input->faces(), *project.stitch, options);
         if (job.pictures) render_stretch(relaxer.relaxed(), relaxer.r_course(), relaxer.r_wale(), run.out("stretch-before.png"));
         ProgressBar bar(progress);
         double first_move = 0;
-        const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+        const auto report = relaxer.run([&](const surface::MeshRelaxStep& s) {
           if (first_move == 0) first_move = s.max_displacement;
           const double goal = options.tolerance * relaxer.r_course();
           const double by_move = s.max_displacement > 0 && first_move > goal ? std::log(first_move / s.max_displacement) / std::log(first_move / goal) : 0;
@@ -479,7 +479,7 @@ int run_job(const Job& job, bool resume, bool progress) {
         return 128 + interrupt_signal();
       }
     }
-    mesh::YarnCurves yarn;
+    relax::YarnCurves yarn;
     run.stage("emit yarn", [&] {
       mesh::EmitOptions options;
       options.yarn_radius = job.yarn_radius > 0 ? job.yarn_radius : 0.1 * job.stitch_size.width;
@@ -512,14 +512,14 @@ int run_job(const Job& job, bool resume, bool progress) {
         const int stitches = static_cast<int>(project.stitch->faces.size());
         json fabric = {{"yarn", job.yarn_weight}, {"radius_mm", job.yarn_radius}, {"contact_radius_mm", yarn.radius}, {"munden_loop_length_mm", munden}};
         if (!job.take_up) {
-          const double take_up = relax::take_up_to_munden(relax::garment_loop_length(system, stitches), munden, job.file.string(), "key 'yarn.weight'");
+          const double take_up = workflow::take_up_to_munden(workflow::garment_loop_length(system, stitches), munden, job.file.string(), "key 'yarn.weight'");
           system = relax::make_yarn_system(yarn, take_up, {}, options.sampling);
           fabric["take_up_to_munden"] = take_up;
         }
-        fabric["yarn_per_stitch_mm"] = relax::garment_loop_length(system, stitches);
+        fabric["yarn_per_stitch_mm"] = workflow::garment_loop_length(system, stitches);
         run.report()["fabric"] = fabric;
       }
-      const auto targets = relax::shape_targets(*project.stitch, yarn, options.shape);
+      const auto targets = workflow::shape_targets(*project.stitch, yarn, options.shape);
       auto state = relax::initial_state(system, options);
       if (std::error_code ec; resume && fs::exists(checkpoint, ec)) {
         state = relax::read_checkpoint(checkpoint, relax::checkpoint_fingerprint(system, options.method), system.num_points());

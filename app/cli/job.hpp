@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "relax/mesh_relax.hpp"
 #include "relax/yarn_relax.hpp"
+#include "surface/mesh_relax.hpp"
 #include "smock.hpp"
 #include "weave.hpp"
 #include "stitchmesh/knit_field.hpp"
@@ -50,7 +50,7 @@ struct Job {
   mesh::StitchSize stitch_size;
   double max_stitches = mesh::kDefaultMaxStitches;  ///< refused past this estimate (check_stitch_count)
   std::vector<JobEdit> edits;
-  std::optional<relax::MeshRelaxOptions> relax_mesh;  ///< none: skipped
+  std::optional<surface::MeshRelaxOptions> relax_mesh;  ///< none: skipped
   double yarn_radius = 0;        ///< [mm]; 0: a tenth of the stitch width
   std::string yarn_weight;       ///< a weight class: relaxed at its compressed contact radius (docs/yarn.md); empty: none
   std::optional<double> take_up;  ///< none: 1, or with a yarn weight Munden's loop length

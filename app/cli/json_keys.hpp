@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.hpp"
-#include "relax/yarn_options.hpp"
+#include "workflow/yarn_options.hpp"
 
 namespace skein::cli {
 
@@ -71,9 +71,9 @@ public:
   /// line, in a project and in the app.
   double option(const std::string& key, double fallback) const {
     if (!has(key)) return fallback;
-    const auto& spec = relax::yarn_option(key);
+    const auto& spec = workflow::yarn_option(key);
     const auto& v = at(key);
-    const bool whole = spec.kind == relax::YarnOption::Kind::Integer;
+    const bool whole = spec.kind == workflow::YarnOption::Kind::Integer;
     // A whole number may be written as 1e3 or 1000.0 (JSON has one kind of number).
     if (!v.is_number() || (whole && v.get<double>() != std::floor(v.get<double>())))
       fail(name(key), std::string("expected a ") + (whole ? "whole " : "") + "number, found " + v.dump());

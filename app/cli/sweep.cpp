@@ -14,8 +14,8 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
-#include "common/cpu_threads.hpp"
 #include "common/atomic_file.hpp"
+#include "common/cpu_threads.hpp"
 #include "common/error.hpp"
 #include "common/input_file.hpp"
 #include "json_keys.hpp"
@@ -61,8 +61,8 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   const auto option = [&](const std::string& key, const std::string& flag, const std::string& value) {
     if (k.has(key)) args.insert(args.end(), {flag, value});
   };
-  option("method", "--method", k.choice("method", "lbfgs", relax::yarn_option("method").choices));
-  option("stop_rule", "--stop-rule", k.choice("stop_rule", "force", relax::yarn_option("stop_rule").choices));
+  option("method", "--method", k.choice("method", "lbfgs", workflow::yarn_option("method").choices));
+  option("stop_rule", "--stop-rule", k.choice("stop_rule", "force", workflow::yarn_option("stop_rule").choices));
   if (k.has("free_period") && !(k.at("free_period").is_boolean() && !k.at("free_period").get<bool>()))
     args.insert(args.end(), {"--free-period", k.choice("free_period", "x", {"x", "y", "xy"})});
   option("max_steps", "--max-steps", std::to_string(static_cast<long>(k.option("max_steps", 0))));

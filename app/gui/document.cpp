@@ -33,7 +33,7 @@ void Document::open(const std::filesystem::path& path) {
   if (path.extension() == ".skein") {
     auto project = mesh::read_project(path);
     if (!project.input) throw Error(path.string(), "", "holds no input mesh to open");
-    settings = relax::read_yarn_settings(project.settings, path.string());
+    settings = workflow::read_yarn_settings(project.settings, path.string());
     input = std::move(project.input);
     state.stitch_size = project.stitch_size;
     state.labels = std::move(project.labels);
@@ -60,13 +60,13 @@ void Document::save(const std::filesystem::path& path) {
   project.labels = m_state.labels;
   project.values = m_state.values;
   project.stitch = m_state.stitch;
-  project.settings = relax::yarn_setting_lines(m_yarn_settings);
+  project.settings = workflow::yarn_setting_lines(m_yarn_settings);
   mesh::write_project(project, path);
   m_path = path;
   m_undo.setClean();
 }
 
-void Document::set_yarn_settings(const relax::YarnSettings& settings) {
+void Document::set_yarn_settings(const workflow::YarnSettings& settings) {
   settings.validate();
   m_yarn_settings = settings;
 }
@@ -296,7 +296,7 @@ void Document::set_relaxed_mesh(mesh::StitchMesh relaxed, const RestSize& rest) 
   apply(tr("Relax stitch mesh"), std::move(next));
 }
 
-void Document::set_yarn(mesh::YarnCurves yarn, bool relaxed, const QString& text) {
+void Document::set_yarn(relax::YarnCurves yarn, bool relaxed, const QString& text) {
   require_stitch();
   EditState next = m_state;
   next.yarn = std::move(yarn);
@@ -305,7 +305,7 @@ void Document::set_yarn(mesh::YarnCurves yarn, bool relaxed, const QString& text
   apply(text, std::move(next));
 }
 
-void Document::set_yarn_preview(mesh::YarnCurves yarn, const QString& text) {
+void Document::set_yarn_preview(relax::YarnCurves yarn, const QString& text) {
   require_stitch();
   EditState next = m_state;
   next.yarn = std::move(yarn);

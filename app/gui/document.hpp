@@ -8,11 +8,11 @@
 #include <QObject>
 #include <QUndoStack>
 
-#include "relax/yarn_settings.hpp"
+#include "relax/yarn_curves.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/project.hpp"
-#include "stitchmesh/yarn_curves.hpp"
+#include "workflow/yarn_settings.hpp"
 
 namespace skein::gui {
 
@@ -30,15 +30,15 @@ struct EditState {
   std::optional<mesh::TessellationValues> values;
   std::optional<mesh::StitchMesh> stitch;
   std::optional<RestSize> rest;         ///< after mesh relaxation; dropped with the stitch mesh it belongs to
-  std::optional<mesh::YarnCurves> yarn;  ///< emitted (or relaxed) from the current stitch mesh
+  std::optional<relax::YarnCurves> yarn;  ///< emitted (or relaxed) from the current stitch mesh
   bool yarn_relaxed = false;
-  bool yarn_preview = false;  ///< the yarn is a stand-in preview (relax::stand_in_preview), neither emitted nor relaxed
+  bool yarn_preview = false;  ///< the yarn is a stand-in preview (workflow::stand_in_preview), neither emitted nor relaxed
   /// The last relaxed yarn and the stitch mesh it was emitted from, kept through stitch edits: relaxing the
-  /// yarn again starts from it and relaxes only the stitches changed since (relax::relax_locally). Dropped
+  /// yarn again starts from it and relaxes only the stitches changed since (workflow::relax_locally). Dropped
   /// when the stitch mesh is made anew or relaxed (every stitch moves).
   struct PreviousYarn {
     mesh::StitchMesh stitch;
-    mesh::YarnCurves relaxed;
+    relax::YarnCurves relaxed;
   };
   std::optional<PreviousYarn> previous;
 };
@@ -64,8 +64,8 @@ public:
   void save(const std::filesystem::path& path);
   /// What the yarn relaxations and the preview run with (Relax > Yarn settings), saved with the project: a
   /// project opened brings its own (the defaults when it has none), a mesh opened keeps the current ones.
-  const relax::YarnSettings& yarn_settings() const { return m_yarn_settings; }
-  void set_yarn_settings(const relax::YarnSettings& settings);  ///< throws skein::Error for a value out of range
+  const workflow::YarnSettings& yarn_settings() const { return m_yarn_settings; }
+  void set_yarn_settings(const workflow::YarnSettings& settings);  ///< throws skein::Error for a value out of range
 
   // Labeling (Yuksel 2012 §5.1)
   void auto_label(int border_edge = -1);  ///< -1: the lowest border edge
@@ -98,9 +98,9 @@ public:
 
   // Results of the relaxations and of yarn emission (undoable too)
   void set_relaxed_mesh(mesh::StitchMesh relaxed, const RestSize& rest);
-  void set_yarn(mesh::YarnCurves yarn, bool relaxed, const QString& text);
+  void set_yarn(relax::YarnCurves yarn, bool relaxed, const QString& text);
   /// The yarn shown as a stand-in preview, as one undo step.
-  void set_yarn_preview(mesh::YarnCurves yarn, const QString& text);
+  void set_yarn_preview(relax::YarnCurves yarn, const QString& text);
 
   /// Makes `next` the state, as one undo step named `text` (what the other edits call).
   void apply(const QString& text, EditState next);
@@ -127,7 +127,7 @@ private:
   EditState m_state;
   QUndoStack m_undo;
   std::filesystem::path m_path;
-  relax::YarnSettings m_yarn_settings;
+  workflow::YarnSettings m_yarn_settings;
 };
 
 }  // namespace skein::gui

@@ -21,15 +21,15 @@
 #include <QToolBar>
 
 #include "common/error.hpp"
-#include "skein/config.hpp"
-#include "relax/yarn_io.hpp"
-#include "relax/yarn_standin.hpp"
 #include "render/stitch_view.hpp"
+#include "skein/config.hpp"
+#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/stitch_types.hpp"
 #include "stitchmesh/tessellation.hpp"
-#include "relax/garment_fabric.hpp"
-#include "stitchmesh/fabric.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/garment_fabric.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_standin.hpp"
 #include "viewport.hpp"
 #include "yarn_settings.hpp"
 
@@ -38,9 +38,9 @@ namespace {
 
 /// The yarn of the state's stitch mesh as emitted: at a tenth of the stitch width, or with a yarn weight in the
 /// settings at the weight's compressed contact radius and drawn at its full one (YarnRelaxJob relaxes it at the first).
-mesh::YarnCurves emitted_yarn(const EditState& state, const YarnSettings& settings) {
+relax::YarnCurves emitted_yarn(const EditState& state, const YarnSettings& settings) {
   if (settings.weight.empty()) return mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = 0.1 * state.stitch_size.width});
-  const auto fabric = relax::garment_fabric(settings.weight, state.stitch_size);
+  const auto fabric = workflow::garment_fabric(settings.weight, state.stitch_size);
   auto yarn = mesh::emit_yarn(*state.stitch, mesh::StitchLibrary::bundled(), {.yarn_radius = fabric.contact_radius});
   yarn.radius = fabric.radius;
   return yarn;
@@ -48,7 +48,7 @@ mesh::YarnCurves emitted_yarn(const EditState& state, const YarnSettings& settin
 
 /// The radius emitted_yarn draws the yarn at.
 double drawn_radius(const EditState& state, const YarnSettings& settings) {
-  return settings.weight.empty() ? 0.1 * state.stitch_size.width : relax::garment_fabric(settings.weight, state.stitch_size).radius;
+  return settings.weight.empty() ? 0.1 * state.stitch_size.width : workflow::garment_fabric(settings.weight, state.stitch_size).radius;
 }
 
 std::filesystem::path fs_path(const QString& path) { return std::filesystem::path(path.toStdString()); }
@@ -471,8 +471,8 @@ bool MainWindow::export_yarn(const QString& path) {
   return attempt([&] {
     if (!m_doc.state().yarn) throw Error("there is no yarn yet: Relax > Emit yarn");
     const auto p = fs_path(path);
-    if (p.extension() == ".bcc") relax::write_bcc(*m_doc.state().yarn, p);
-    else if (p.extension() == ".obj") relax::write_tube_obj(*m_doc.state().yarn, p);
+    if (p.extension() == ".bcc") workflow::write_bcc(*m_doc.state().yarn, p);
+    else if (p.extension() == ".obj") workflow::write_tube_obj(*m_doc.state().yarn, p);
     else throw Error(path.toStdString(), "", "yarn is exported as .bcc or .obj");
     statusBar()->showMessage(tr("Wrote %1").arg(path));
   });
@@ -483,7 +483,7 @@ bool MainWindow::export_stitch_ply(const QString& path) {
     const auto& state = m_doc.state();
     if (!state.stitch) throw Error("there is no stitch mesh yet: Stitch > Generate stitch mesh");
     std::vector<std::pair<std::string, std::vector<double>>> values;
-    if (state.rest) values.emplace_back("area_strain", relax::face_stretch(*state.stitch, state.rest->r_course, state.rest->r_wale).area_strain);
+    if (state.rest) values.emplace_back("area_strain", surface::face_stretch(*state.stitch, state.rest->r_course, state.rest->r_wale).area_strain);
     render::write_ply(*state.stitch, face_colors(*state.stitch, m_coloring, state.rest), values, fs_path(path));
     statusBar()->showMessage(tr("Wrote %1").arg(path));
   });
@@ -687,7 +687,7 @@ bool MainWindow::relax_mesh() {
     const auto& state = m_doc.state();
     if (!state.stitch || !m_doc.input()) throw Error("generate the stitch mesh first (Stitch > Generate stitch mesh)");
     m_job_is_yarn = false;
-    start_job(new MeshRelaxJob(*m_doc.input(), *state.stitch, relax::MeshRelaxOptions{}));
+    start_job(new MeshRelaxJob(*m_doc.input(), *state.stitch, surface::MeshRelaxOptions{}));
     set_coloring(Coloring::Stretch);
     m_job_label->setText(tr("Relaxing the stitch mesh..."));
   });
@@ -719,17 +719,17 @@ bool MainWindow::preview_yarn() {
     const auto yarn = emitted_yarn(state, m_doc.yarn_settings());
     auto options = m_doc.yarn_settings().relax;
     options.audit = false;  // the preview is certified on its own straight path from the emission
-    relax::StandInOptions stand_in;
+    workflow::StandInOptions stand_in;
     stand_in.take_up = m_doc.yarn_settings().take_up;
     stand_in.patterns = m_tiled_patterns;
-    relax::StandInReport report;
-    const auto points = relax::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, stand_in, report);
+    workflow::StandInReport report;
+    const auto points = workflow::stand_in_preview(*state.stitch, yarn, mesh::StitchLibrary::bundled(), options, stand_in, report);
     // Not a relaxation: Relax yarn starts from the emission.
     m_doc.set_yarn_preview(relax::with_points(yarn, points), tr("Preview yarn"));
     QStringList repeats;
     for (const auto& t : report.repeats) repeats << QString::fromStdString(t.pattern);
     m_job_label->setText(report.repeats.empty()
-                             ? tr("stand-in preview: no repeating pattern covers a region of %1 stitches; the yarn is as emitted").arg(relax::StandInOptions{}.min_faces)
+                             ? tr("stand-in preview: no repeating pattern covers a region of %1 stitches; the yarn is as emitted").arg(workflow::StandInOptions{}.min_faces)
                              : tr("stand-in preview (not a relaxation) in %1 s: %2 of %3 control points from the patches of %4")
                                    .arg(report.seconds, 0, 'f', 1)
                                    .arg(report.placed)

@@ -83,7 +83,7 @@ public:
   bool relax_mesh();
   bool emit_yarn();
   bool relax_yarn();
-  /// A stand-in preview of the relaxed yarn (relax::stand_in_preview), in the foreground: seconds, not a relaxation.
+  /// A stand-in preview of the relaxed yarn (workflow::stand_in_preview), in the foreground: seconds, not a relaxation.
   bool preview_yarn();
   void pause_or_resume();
   void stop_job();

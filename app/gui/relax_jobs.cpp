@@ -3,11 +3,11 @@
 #include <tuple>
 
 #include "cuda/yarn_relaxer.hpp"
-#include "relax/garment_fabric.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/garment_fabric.hpp"
+#include "workflow/yarn_shape.hpp"
 
 namespace skein::gui {
 
@@ -34,7 +34,7 @@ void RelaxJob::fail(const QString& reason) {
   m_progress.stopped_by = tr("failed");
 }
 
-MeshRelaxJob::MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, relax::MeshRelaxOptions options, QObject* parent)
+MeshRelaxJob::MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, surface::MeshRelaxOptions options, QObject* parent)
     : RelaxJob(parent), m_control_points(input.points()), m_control_faces(input.faces()), m_options(options), m_stitch(std::move(stitch)) {
   m_options.interrupt = &m_interrupt;
   m_progress.max_steps = m_options.max_steps;
@@ -58,12 +58,12 @@ RestSize MeshRelaxJob::rest() const {
 void MeshRelaxJob::run() {
   m_interrupt = false;
   try {
-    relax::MeshRelaxer relaxer(m_control_points, m_control_faces, m_stitch, m_options);
+    surface::MeshRelaxer relaxer(m_control_points, m_control_faces, m_stitch, m_options);
     {
       std::lock_guard lock(m_mutex);
       m_rest = {relaxer.r_course(), relaxer.r_wale()};
     }
-    const auto report = relaxer.run([&](const relax::MeshRelaxStep& s) {
+    const auto report = relaxer.run([&](const surface::MeshRelaxStep& s) {
       const bool publish = due();
       {
         std::lock_guard lock(m_mutex);
@@ -87,19 +87,19 @@ void MeshRelaxJob::run() {
 namespace {
 
 /// The yarn as it relaxes (a weight's at its contact radius) and its take-up (a weight's to Munden's loop length).
-std::pair<mesh::YarnCurves, double> relaxed_as(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size,
+std::pair<relax::YarnCurves, double> relaxed_as(relax::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size,
                                                const YarnSettings& settings) {
   if (settings.weight.empty()) return {std::move(yarn), settings.take_up};
-  const auto fabric = relax::garment_fabric(settings.weight, size);
+  const auto fabric = workflow::garment_fabric(settings.weight, size);
   yarn.radius = fabric.contact_radius;
-  const double loop = relax::garment_loop_length(relax::make_yarn_system(yarn, 1.0, {}, settings.relax.sampling), static_cast<int>(stitch.faces.size()));
-  return {std::move(yarn), relax::take_up_to_munden(loop, fabric.munden_loop_length, "", "yarn weight " + fabric.yarn,
+  const double loop = workflow::garment_loop_length(relax::make_yarn_system(yarn, 1.0, {}, settings.relax.sampling), static_cast<int>(stitch.faces.size()));
+  return {std::move(yarn), workflow::take_up_to_munden(loop, fabric.munden_loop_length, "", "yarn weight " + fabric.yarn,
                                                     "choose another yarn weight or stitch size (Stitch > Stitch size from gauge)")};
 }
 
 }  // namespace
 
-YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
+YarnRelaxJob::YarnRelaxJob(relax::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
                            relax::Backend backend, QObject* parent)
     : RelaxJob(parent),
       m_drawn_radius(yarn.radius),
@@ -110,7 +110,7 @@ YarnRelaxJob::YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch
       m_backend(backend) {
   std::tie(m_yarn, m_take_up) = relaxed_as(std::move(yarn), stitch, size, settings);
   m_system = relax::make_yarn_system(m_yarn, m_take_up, {}, settings.relax.sampling);
-  m_targets = relax::shape_targets(stitch, m_yarn, m_options.shape);
+  m_targets = workflow::shape_targets(stitch, m_yarn, m_options.shape);
   m_options.interrupt = &m_interrupt;
   m_progress.max_steps = m_options.max_steps;
   m_points = m_system.points;
@@ -121,18 +121,18 @@ YarnRelaxJob::~YarnRelaxJob() {
   wait();
 }
 
-void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed) {
+void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const relax::YarnCurves& previous_relaxed) {
   mesh::EmitOptions emission;
   emission.yarn_radius = m_yarn.radius;
   const auto previous_emitted = mesh::emit_yarn(previous_stitch, mesh::StitchLibrary::bundled(), emission);
   if (previous_emitted.curve_start != previous_relaxed.curve_start) return;  // not that mesh's yarn: relax it all
   Eigen::Matrix3Xd points(3, previous_relaxed.points.size());
   for (size_t p = 0; p < previous_relaxed.points.size(); ++p) points.col(p) = previous_relaxed.points[p];
-  m_splice = relax::splice_previous(m_yarn, previous_emitted, points);
+  m_splice = workflow::splice_previous(m_yarn, previous_emitted, points);
   m_points = m_splice->points;
 }
 
-std::optional<relax::LocalRelaxReport> YarnRelaxJob::local() const {
+std::optional<workflow::LocalRelaxReport> YarnRelaxJob::local() const {
   std::lock_guard lock(m_mutex);
   return m_local;
 }
@@ -142,7 +142,7 @@ std::optional<relax::ActiveSetCounters> YarnRelaxJob::active_set() const {
   return m_active;
 }
 
-mesh::YarnCurves YarnRelaxJob::yarn() const {
+relax::YarnCurves YarnRelaxJob::yarn() const {
   std::lock_guard lock(m_mutex);
   auto out = relax::with_points(m_yarn, m_points);
   out.radius = m_drawn_radius;
@@ -175,8 +175,8 @@ void YarnRelaxJob::run() {
   try {
     if (m_splice) {
       // After stitch edits: the changed stitches and rings around them, from the previous relaxed yarn.
-      relax::LocalRelaxReport local;
-      const auto points = relax::relax_locally(m_stitch, m_yarn, *m_splice, m_options, m_local_options, m_take_up, {}, local);
+      workflow::LocalRelaxReport local;
+      const auto points = workflow::relax_locally(m_stitch, m_yarn, *m_splice, m_options, m_local_options, m_take_up, {}, local);
       m_splice.reset();
       if (local.stopped_by != relax::StopReason::UnsafeSplice) {
         std::lock_guard lock(m_mutex);

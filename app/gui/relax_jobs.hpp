@@ -9,9 +9,9 @@
 #include <QThread>
 
 #include "document.hpp"
-#include "relax/mesh_relax.hpp"
-#include "relax/yarn_local.hpp"
 #include "relax/yarn_relax.hpp"
+#include "surface/mesh_relax.hpp"
+#include "workflow/yarn_local.hpp"
 #include "yarn_settings.hpp"
 
 namespace skein::gui {
@@ -59,7 +59,7 @@ private:
 class MeshRelaxJob final : public RelaxJob {
   Q_OBJECT
 public:
-  MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, relax::MeshRelaxOptions options, QObject* parent = nullptr);
+  MeshRelaxJob(const mesh::InputMesh& input, mesh::StitchMesh stitch, surface::MeshRelaxOptions options, QObject* parent = nullptr);
   ~MeshRelaxJob() override;
   mesh::StitchMesh stitch() const;  ///< the latest positions
   RestSize rest() const;
@@ -70,7 +70,7 @@ protected:
 private:
   std::vector<Eigen::Vector3d> m_control_points;
   std::vector<std::vector<int>> m_control_faces;
-  relax::MeshRelaxOptions m_options;
+  surface::MeshRelaxOptions m_options;
   mesh::StitchMesh m_stitch;
   RestSize m_rest;
 };
@@ -81,20 +81,20 @@ class YarnRelaxJob final : public RelaxJob {
   Q_OBJECT
 public:
   /// With a yarn weight in the settings, `yarn` is emitted at its contact radius (its `radius` the full one, as drawn):
-  /// it relaxes at the contact radius with its rest lengths cut to Munden's loop length for `size` (relax::garment_fabric).
-  YarnRelaxJob(mesh::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
+  /// it relaxes at the contact radius with its rest lengths cut to Munden's loop length for `size` (workflow::garment_fabric).
+  YarnRelaxJob(relax::YarnCurves yarn, const mesh::StitchMesh& stitch, const mesh::StitchSize& size, const YarnSettings& settings,
                relax::Backend backend, QObject* parent = nullptr);
   ~YarnRelaxJob() override;
   /// Before the first start: begin from `previous_relaxed`, the relaxed yarn of `previous_stitch`, and relax
-  /// only the stitches changed since and the settings' rings around them (relax::relax_locally, on the CPU). A splice that
+  /// only the stitches changed since and the settings' rings around them (workflow::relax_locally, on the CPU). A splice that
   /// would pass yarn through yarn is not used: the whole yarn relaxes then.
-  void warm_start(const mesh::StitchMesh& previous_stitch, const mesh::YarnCurves& previous_relaxed);
-  mesh::YarnCurves yarn() const;  ///< the latest points (at the radius the yarn is drawn at)
+  void warm_start(const mesh::StitchMesh& previous_stitch, const relax::YarnCurves& previous_relaxed);
+  relax::YarnCurves yarn() const;  ///< the latest points (at the radius the yarn is drawn at)
   double take_up() const { return m_take_up; }  ///< the take-up the yarn relaxes with (a weight's: to Munden's loop length)
   const std::string& weight() const { return m_weight; }  ///< the yarn weight it relaxes as ("": none)
   QString backend() const;
   /// What the local relaxation did, once it ran.
-  std::optional<relax::LocalRelaxReport> local() const;
+  std::optional<workflow::LocalRelaxReport> local() const;
   /// With the active set: what it did, once the whole yarn ran.
   std::optional<relax::ActiveSetCounters> active_set() const;
 
@@ -104,18 +104,18 @@ protected:
 private:
   void publish(const relax::YarnStepLog& log);
 
-  mesh::YarnCurves m_yarn;  ///< at the radius it relaxes at
+  relax::YarnCurves m_yarn;  ///< at the radius it relaxes at
   double m_drawn_radius;    ///< the radius yarn() gives it
   std::string m_weight;
   mesh::StitchMesh m_stitch;
-  std::optional<relax::Splice> m_splice;          ///< a warm start not yet run
-  std::optional<relax::LocalRelaxReport> m_local;  ///< a warm start run
+  std::optional<workflow::Splice> m_splice;          ///< a warm start not yet run
+  std::optional<workflow::LocalRelaxReport> m_local;  ///< a warm start run
   std::optional<relax::ActiveSetCounters> m_active;  ///< a whole run with the active set
   relax::YarnSystem m_system;
   relax::ShapeTargets m_targets;
   relax::YarnRelaxOptions m_options;
   double m_take_up;
-  relax::LocalRelaxOptions m_local_options;
+  workflow::LocalRelaxOptions m_local_options;
   relax::Backend m_backend;
   std::unique_ptr<relax::YarnRelaxer> m_relaxer;  ///< made on the first run, kept for resuming
   relax::YarnState m_state;

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include "relax/mesh_relax.hpp"
-#include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
 #include "render/yarn_view.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "surface/mesh_relax.hpp"
+#include "workflow/yarn_io.hpp"
 
 namespace skein::gui {
 namespace {
@@ -115,7 +115,7 @@ Eigen::Vector3f stitch_srgb(const std::array<double, 3>& srgb) { return {static_
 
 std::vector<Eigen::Vector3f> face_colors(const mesh::StitchMesh& stitch, Coloring coloring, const std::optional<RestSize>& rest) {
   std::vector<double> strain;
-  if (coloring == Coloring::Stretch && rest) strain = relax::face_stretch(stitch, rest->r_course, rest->r_wale).area_strain;
+  if (coloring == Coloring::Stretch && rest) strain = surface::face_stretch(stitch, rest->r_course, rest->r_wale).area_strain;
   std::vector<Eigen::Vector3f> colors(stitch.faces.size(), kUnlabeledFace);
   for (size_t f = 0; f < stitch.faces.size(); ++f) {
     if (coloring == Coloring::StitchType) colors[f] = render::stitch_color(stitch.faces[f].type);
@@ -147,7 +147,7 @@ Geometry stitch_geometry(const mesh::StitchMesh& stitch, Coloring coloring, cons
   return g;
 }
 
-Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail, int max_tube_points) {
+Geometry yarn_geometry(const relax::YarnCurves& yarn, YarnDetail detail, int max_tube_points) {
   Geometry g;
   if (static_cast<int>(yarn.points.size()) <= max_tube_points) {
     const bool full = detail == YarnDetail::Full;
@@ -162,7 +162,7 @@ Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail, int max_
       add_polygon(g, polygon.points, loop, shown);
     }
   } else {
-    const auto curves = relax::sample_curves(yarn, 2);
+    const auto curves = workflow::sample_curves(yarn, 2);
     for (int c = 0; c < static_cast<int>(curves.size()); ++c)
       for (size_t i = 0; i + 1 < curves[c].size(); ++i) add_line(g, curves[c][i], curves[c][i + 1], render::row_color(c));
   }

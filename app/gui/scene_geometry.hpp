@@ -48,7 +48,7 @@ enum class YarnDetail { Full, Live };
 
 /// Yarn as shaded tubes coloured by stitch type; very large yarn (over `max_tube_points` control points) as
 /// lines, which keeps a sweater's yarn within graphics memory.
-Geometry yarn_geometry(const mesh::YarnCurves& yarn, YarnDetail detail = YarnDetail::Full, int max_tube_points = 60000);
+Geometry yarn_geometry(const relax::YarnCurves& yarn, YarnDetail detail = YarnDetail::Full, int max_tube_points = 60000);
 
 /// What a ray from `origin` along `direction` hits first: the face and, of its loop, the edge nearest to the hit.
 struct Hit {

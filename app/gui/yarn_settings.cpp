@@ -12,8 +12,8 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
-#include "relax/yarn_options.hpp"
 #include "stitchmesh/fabric.hpp"
+#include "workflow/yarn_options.hpp"
 
 
 namespace skein::gui {
@@ -22,7 +22,7 @@ namespace {
 
 /// A yarn option's box, its range and tooltip from the schema (relax/yarn_options.hpp), as on the command line.
 QDoubleSpinBox* number(const char* name, const char* key, double step, int decimals, double value) {
-  const auto& spec = relax::yarn_option(key);
+  const auto& spec = workflow::yarn_option(key);
   auto* box = new QDoubleSpinBox;
   box->setObjectName(name);
   // The box shows `decimals` digits and rounds its range to them: inside the schema's range, never past it
@@ -38,7 +38,7 @@ QDoubleSpinBox* number(const char* name, const char* key, double step, int decim
 }
 
 QSpinBox* count(const char* name, const char* key, int value) {
-  const auto& spec = relax::yarn_option(key);
+  const auto& spec = workflow::yarn_option(key);
   auto* box = new QSpinBox;
   box->setObjectName(name);
   box->setRange(static_cast<int>(spec.low), static_cast<int>(spec.high));
@@ -76,7 +76,7 @@ YarnSettingsDialog::YarnSettingsDialog(const YarnSettings& settings, QWidget* pa
   for (const auto& w : mesh::yarn_weights())
     m_weight->addItem(tr("%1 (CYC %2, %3 mm)").arg(QString::fromStdString(w.name)).arg(w.category).arg(w.diameter(), 0, 'f', 2), QString::fromStdString(w.name));
   m_weight->setCurrentIndex(std::max(0, m_weight->findData(QString::fromStdString(settings.weight))));
-  m_weight->setToolTip(QString::fromStdString(relax::yarn_option("weight").help) +
+  m_weight->setToolTip(QString::fromStdString(workflow::yarn_option("weight").help) +
                        tr("; the stand-in preview and local re-relaxation after edits keep the emitted radius and need none"));
   const auto weight_set = [this] { m_take_up->setEnabled(m_weight->currentIndex() == 0); };
   weight_set();

@@ -2,7 +2,7 @@
 
 #include <QDialog>
 
-#include "relax/yarn_settings.hpp"
+#include "workflow/yarn_settings.hpp"
 
 class QCheckBox;
 class QComboBox;
@@ -12,7 +12,7 @@ class QSpinBox;
 namespace skein::gui {
 
 /// What Relax yarn (whole or local after edits) and the stand-in preview run with; saved with the project.
-using YarnSettings = relax::YarnSettings;
+using YarnSettings = workflow::YarnSettings;
 
 /// The dialog behind Relax > Yarn settings. Its fields carry object names (method, tolerance, maxSteps, jamSteps,
 /// clippedScale, weight, takeUp, audit, activeSet, adaptiveSamples, contactSpacing, rings, halo) for tests.

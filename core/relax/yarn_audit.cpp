@@ -389,7 +389,7 @@ struct SampledLoop {
   Eigen::AlignedBox3d box;
 };
 
-SampledLoop sample_loop(const mesh::YarnCurves& yarn, int c, int per_segment) {
+SampledLoop sample_loop(const relax::YarnCurves& yarn, int c, int per_segment) {
   SampledLoop out;
   const int begin = yarn.curve_start[c], n = yarn.curve_size(c);
   const auto point = [&](int k) -> const Vector3d& { return yarn.points[begin + ((k % n) + n) % n]; };
@@ -431,7 +431,7 @@ long polyline_linking_number(const std::vector<Vector3d>& a, const std::vector<V
 
 }  // namespace
 
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation) {
+std::vector<Linking> linking_numbers(const relax::YarnCurves& yarn, double deviation) {
   std::vector<int> closed;
   for (int c = 0; c < yarn.curves(); ++c)
     if (yarn.closed[c] && yarn.curve_size(c) > 2) closed.push_back(c);

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "relax/yarn_curves.hpp"
 #include "relax/yarn_system.hpp"
-#include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::relax {
 
@@ -82,6 +82,6 @@ struct Linking {
   long number = 0;
 };
 inline constexpr int kMaxLinkingSamples = 1024;
-std::vector<Linking> linking_numbers(const mesh::YarnCurves& yarn, double deviation = 0.1);
+std::vector<Linking> linking_numbers(const relax::YarnCurves& yarn, double deviation = 0.1);
 
 }  // namespace skein::relax

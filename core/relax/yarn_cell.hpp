@@ -5,8 +5,8 @@
 // and a garter shortens by themselves and a pattern reports its own gauge.
 #include <Eigen/Core>
 
+#include "relax/periodic_map.hpp"
 #include "relax/yarn_contacts.hpp"
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_system.hpp"
 
 namespace skein::relax {

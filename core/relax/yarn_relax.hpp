@@ -10,11 +10,11 @@
 #include <Eigen/Core>
 
 #include "relax/pull_through_guard.hpp"
+#include "relax/shape_targets.hpp"
 #include "relax/yarn_active.hpp"
 #include "relax/yarn_cell.hpp"
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_segment.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 
 namespace skein::relax {

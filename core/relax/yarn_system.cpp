@@ -73,7 +73,7 @@ bool YarnSystem::adjacent(int a, int b) const { return model::adjacent(segment_v
 
 bool YarnSystem::consecutive(int a, int b) const { return model::consecutive(segment_view(*this), a, b); }
 
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, const std::map<std::string, double>& take_up_by_type,
+YarnSystem make_yarn_system(const relax::YarnCurves& curves, double take_up, const std::map<std::string, double>& take_up_by_type,
                             const ContactSampling& sampling) {
   sampling.validate();
   if (!(curves.radius > 0) || !std::isfinite(curves.radius)) throw Error("", "", "the yarn radius must be positive, found " + std::to_string(curves.radius));
@@ -164,7 +164,7 @@ YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up, cons
   return s;
 }
 
-YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves, const std::string& where) {
+YarnSystem with_rest_lengths_of(YarnSystem rest, const relax::YarnCurves& curves, const std::string& where) {
   if (curves.curves() != rest.num_curves())
     throw Error(where, "", "holds " + std::to_string(curves.curves()) + " yarns where the yarn relaxed holds " + std::to_string(rest.num_curves()));
   for (int c = 0; c < rest.num_curves(); ++c) {
@@ -178,8 +178,8 @@ YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves,
   return rest;
 }
 
-mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points) {
-  mesh::YarnCurves out = curves;
+relax::YarnCurves with_points(const relax::YarnCurves& curves, const Eigen::Matrix3Xd& points) {
+  relax::YarnCurves out = curves;
   for (int p = 0; p < static_cast<int>(out.points.size()); ++p) out.points[p] = points.col(p);
   return out;
 }
@@ -202,7 +202,7 @@ PositionKey position_key(const Eigen::Vector3d& p) {
   return {std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4)};
 }
 
-void follow_placed(const mesh::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points) {
+void follow_placed(const relax::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points) {
   for (int c = 0; c < yarn.curves(); ++c) {
     const int begin = yarn.curve_start[c], end = yarn.curve_start[c + 1];
     // The nearest placed point before each point, then after it where that is strictly nearer.
@@ -224,9 +224,9 @@ void follow_placed(const mesh::YarnCurves& yarn, const std::vector<char>& placed
   }
 }
 
-mesh::YarnCurves cut_curves(const mesh::YarnCurves& in, const std::vector<char>& keep, std::vector<int>& index) {
+relax::YarnCurves cut_curves(const relax::YarnCurves& in, const std::vector<char>& keep, std::vector<int>& index) {
   const int n = static_cast<int>(in.points.size());
-  mesh::YarnCurves out;
+  relax::YarnCurves out;
   out.radius = in.radius;
   out.type_names = in.type_names;
   out.colours = in.colours;

@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "relax/yarn_curves.hpp"
 #include "relax/yarn_segment.hpp"
-#include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::relax {
 
@@ -62,28 +62,28 @@ struct ContactSampling {
 /// A system from emitted or loaded curves; rest lengths are the current segments' arc lengths times `take_up`,
 /// and times `take_up_by_type[name]` for the segments of a stitch (or weft, warp) of that type (Leaf 2018 §6.1:
 /// more or less yarn for slip stitches, or along the warp or the weft); `name:vertical` and `name:horizontal`
-/// scale only that stitch's vertical or horizontal material (mesh::YarnCurves::point_vertical), on top of
+/// scale only that stitch's vertical or horizontal material (relax::YarnCurves::point_vertical), on top of
 /// `name`'s factor. A segment belongs to the piece of its owner point (segment_owner). Throws skein::Error when the
 /// yarn has no segment, a non-positive radius or take-up, coincident control points, or a take-up names a
 /// type the yarn does not have. `sampling` sets each segment's contact samples, from its shape as given.
-YarnSystem make_yarn_system(const mesh::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {},
+YarnSystem make_yarn_system(const relax::YarnCurves& curves, double take_up = 1.0, const std::map<std::string, double>& take_up_by_type = {},
                             const ContactSampling& sampling = {});
 
 /// The system `rest` (its segments, rest lengths and samples) with its points moved to those of `curves`, the same
 /// yarn in another shape: a swatch bent after relaxing flat keeps the flat yarn's lengths as its rest lengths,
 /// where make_yarn_system(curves) would take the bent lengths (relax-yarn --rest-lengths). Throws skein::Error,
 /// naming `where`, when the two do not hold the same curves (count, points per curve, open or closed).
-YarnSystem with_rest_lengths_of(YarnSystem rest, const mesh::YarnCurves& curves, const std::string& where);
+YarnSystem with_rest_lengths_of(YarnSystem rest, const relax::YarnCurves& curves, const std::string& where);
 
 /// The curves with only the points where `keep` is set: a curve is cut where it loses points (a closed curve
 /// that loses some opens there, just after a lost point) and pieces of fewer than two points are dropped; the
 /// pieces keep their order, and the points their faces, types and colours. `index`: per input point its index in the result, or -1.
-mesh::YarnCurves cut_curves(const mesh::YarnCurves& curves, const std::vector<char>& keep, std::vector<int>& index);
+relax::YarnCurves cut_curves(const relax::YarnCurves& curves, const std::vector<char>& keep, std::vector<int>& index);
 
 /// Points that are not `placed` move as the nearest placed point of their yarn (by count of points along it,
 /// the earlier one on a tie): to their position in `base` plus that point's move from `base` into `points`.
 /// On a yarn with no placed point they take their `base` position.
-void follow_placed(const mesh::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points);
+void follow_placed(const relax::YarnCurves& yarn, const std::vector<char>& placed, const Eigen::Matrix3Xd& base, Eigen::Matrix3Xd& points);
 
 /// A point's position rounded to 0.1 µm. Emission puts the same points at the same places, so this matches
 /// points across emissions: a tiling and its periodic patch, a garment before and after an edit.
@@ -91,7 +91,7 @@ using PositionKey = std::tuple<long long, long long, long long>;
 PositionKey position_key(const Eigen::Vector3d& p);
 
 /// Writes the system's control points back into a copy of `curves` (same structure).
-mesh::YarnCurves with_points(const mesh::YarnCurves& curves, const Eigen::Matrix3Xd& points);
+relax::YarnCurves with_points(const relax::YarnCurves& curves, const Eigen::Matrix3Xd& points);
 
 /// The system's segment arrays as the shared per-segment math (yarn_segment.hpp) reads them; valid while
 /// `system` lives and is not resized.

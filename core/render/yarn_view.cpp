@@ -4,19 +4,19 @@
 
 #include <Eigen/Geometry>
 
-#include "relax/yarn_io.hpp"
 #include "render/stitch_view.hpp"
+#include "workflow/yarn_io.hpp"
 
 namespace skein::render {
 
-std::vector<Polygon> yarn_polygons(const mesh::YarnCurves& yarn, YarnColor color, int sides, int samples_per_segment) {
-  const auto curves = relax::sample_curves(yarn, samples_per_segment);
+std::vector<Polygon> yarn_polygons(const relax::YarnCurves& yarn, YarnColor color, int sides, int samples_per_segment) {
+  const auto curves = workflow::sample_curves(yarn, samples_per_segment);
   std::vector<Polygon> out;
   for (int c = 0; c < static_cast<int>(curves.size()); ++c) {
     const auto& pts = curves[c];
     if (pts.size() < 2) continue;
     const int n = yarn.curve_size(c), first = yarn.curve_start[c];
-    const auto rings = relax::tube_rings(pts, yarn.radius, sides);
+    const auto rings = workflow::tube_rings(pts, yarn.radius, sides);
     for (size_t i = 0; i + 1 < rings.size(); ++i) {
       Eigen::Vector3f rgb;
       const int point = first + std::min(n - 1, static_cast<int>(i) / samples_per_segment);  // where this stretch starts

@@ -119,7 +119,7 @@ std::vector<int> merge_palette(std::vector<PatternColour>& palette, const std::v
   return index;
 }
 
-void colour_yarn(YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette) {
+void colour_yarn(relax::YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette) {
   yarn.point_colour.clear();
   yarn.colours.clear();
   if (palette.empty()) return;
@@ -147,7 +147,7 @@ void colour_yarn(YarnCurves& yarn, const std::vector<int>& face_colour, const st
   }
 }
 
-std::vector<double> yarn_length_by_colour(const YarnCurves& yarn) {
+std::vector<double> yarn_length_by_colour(const relax::YarnCurves& yarn) {
   std::vector<double> length(yarn.colours.size(), 0.0);
   if (yarn.point_colour.size() != yarn.points.size()) return length;
   for (int c = 0; c < yarn.curves(); ++c) {

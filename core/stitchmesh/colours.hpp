@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "stitchmesh/yarn_curves.hpp"
+#include "relax/yarn_curves.hpp"
 
 namespace skein::mesh {
 
@@ -53,9 +53,9 @@ std::vector<int> merge_palette(std::vector<PatternColour>& palette, const std::v
 /// Colours the yarn: each control point takes the colour of the stitch face it was emitted in
 /// (`face_colour[point_face]`), a point of no face (a border piece) that of the nearest point along its yarn
 /// that has one. Sets `yarn.point_colour` and `yarn.colours`; with an empty palette it clears them.
-void colour_yarn(YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette);
+void colour_yarn(relax::YarnCurves& yarn, const std::vector<int>& face_colour, const std::vector<PatternColour>& palette);
 
 /// The yarn length of each colour [mm] (the control polygon's, each segment to its first point's colour).
-std::vector<double> yarn_length_by_colour(const YarnCurves& yarn);
+std::vector<double> yarn_length_by_colour(const relax::YarnCurves& yarn);
 
 }  // namespace skein::mesh

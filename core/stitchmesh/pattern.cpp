@@ -13,9 +13,9 @@
 #include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
-#include "stitchmesh/written_pattern.hpp"
-#include "stitchmesh/wif_pattern.hpp"
 #include "stitchmesh/text.hpp"
+#include "stitchmesh/wif_pattern.hpp"
+#include "stitchmesh/written_pattern.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -508,7 +508,7 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
   return out;
 }
 
-void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int up) {
+void colour_woven_yarn(relax::YarnCurves& yarn, const Pattern& pattern, int across, int up) {
   if (pattern.palette.empty() || pattern.weft_colours.empty() || pattern.warp_colours.empty()) return;
   const int rows = up * pattern.height();
   if (yarn.curves() != rows + across * pattern.width()) throw Error("", "pattern " + pattern.name, "the yarn is not its woven yarn at this tiling");
@@ -521,13 +521,13 @@ void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int
   }
 }
 
-YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius) {
+relax::YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius) {
   if (pattern.format != PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is knitted: its yarn comes from its stitch mesh");
   if (across < 1 || up < 1 || across > 4096 || up > 4096)
     throw Error("", "tiling", "the repeat counts must be 1 to 4096, found " + std::to_string(across) + " x " + std::to_string(up));
   if (!(radius > 0) || !(spacing >= 2 * radius) || !std::isfinite(spacing))
     throw Error("", "weave", "the yarn radius must be positive and the spacing at least a yarn diameter");
-  YarnCurves yarn;
+  relax::YarnCurves yarn;
   yarn.radius = radius;
   yarn.type_names = {"weft", "warp"};
   const int rows = up * pattern.height(), cols = across * pattern.width();

@@ -3,10 +3,10 @@
 #include <string>
 #include <vector>
 
+#include "relax/yarn_curves.hpp"
 #include "stitchmesh/colours.hpp"
 #include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/tessellation.hpp"
-#include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::mesh {
 
@@ -76,7 +76,7 @@ StitchMesh pattern_stitch_mesh(const Pattern& pattern, int across, int up, const
 
 /// Colours woven yarn made by woven_yarn(pattern, across, up) (wefts first, then warps) by the pattern's weft and warp
 /// colours; does nothing for a pattern in one colour.
-void colour_woven_yarn(YarnCurves& yarn, const Pattern& pattern, int across, int up);
+void colour_woven_yarn(relax::YarnCurves& yarn, const Pattern& pattern, int across, int up);
 
 /// Whether tiling the knit pattern re-meshes the stitches it covers (its rows have increases, decreases or
 /// lace, or it has cables) instead of repainting plain stitches (tile_pattern).
@@ -106,6 +106,6 @@ StitchMesh tile_pattern(const StitchMesh& mesh, const std::vector<int>& faces, c
 
 /// Woven yarn of a woven pattern repeated `across` × `up` times: straight weft yarns along x and warp yarns
 /// along y, `spacing` apart, passing over and under each other by one yarn radius at every crossing.
-YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius);
+relax::YarnCurves woven_yarn(const Pattern& pattern, int across, int up, double spacing, double radius);
 
 }  // namespace skein::mesh

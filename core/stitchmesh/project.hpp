@@ -12,7 +12,7 @@
 namespace skein::mesh {
 
 /// One `set KEY VALUE` line of a project: a setting the app saves with the project (the yarn relaxation's:
-/// relax::read_yarn_settings reads them), kept here as text with its line for errors.
+/// workflow::read_yarn_settings reads them), kept here as text with its line for errors.
 struct ProjectSetting {
   std::string key, value;
   int line = 0;  ///< where it was read, 0 when made in memory

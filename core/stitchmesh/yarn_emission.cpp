@@ -12,15 +12,6 @@
 
 namespace skein::mesh {
 
-int YarnCurves::yarn_of(int point) const {
-  return static_cast<int>(std::upper_bound(curve_start.begin(), curve_start.end(), point) - curve_start.begin()) - 1;
-}
-
-int YarnCurves::segment_owner(int p) const {
-  const int c = yarn_of(p);
-  return p + 1 < curve_start[c + 1] ? p + 1 : p;
-}
-
 void EmitOptions::validate() const {
   if (!(std::isfinite(yarn_radius) && yarn_radius > 0)) throw Error("", "yarn radius", "must be a positive number of mm");
 }
@@ -62,7 +53,7 @@ public:
   Emitter(const StitchMesh& mesh, const StitchLibrary& library, const EmitOptions& options)
       : m_mesh(mesh), m_library(library), m_radius(options.yarn_radius), m_table(edge_table(mesh)) {}
 
-  YarnCurves run(EmitReport& report) {
+  relax::YarnCurves run(EmitReport& report) {
     check_wale_directions();
     vertex_normals();
     collect_cables();
@@ -455,13 +446,13 @@ private:
   }
 
   // ---- joining -------------------------------------------------------------------------------------------
-  YarnCurves join(EmitReport& report) {
+  relax::YarnCurves join(EmitReport& report) {
     for (size_t id = 0; id < m_node_ends.size(); ++id)
       if (m_node_ends[id].size() > 2)
         throw Error("", "crossing near (" + std::to_string(m_node_pos[id].x()) + ", " + std::to_string(m_node_pos[id].y()) + ", " +
                             std::to_string(m_node_pos[id].z()) + ")",
                     std::to_string(m_node_ends[id].size()) + " yarn pieces meet where two should");
-    YarnCurves out;
+    relax::YarnCurves out;
     out.radius = m_radius;
     std::vector<char> used(m_pieces.size(), 0);
     const auto walk = [&](int piece, int enter_end) {
@@ -528,12 +519,12 @@ private:
 
 }  // namespace
 
-YarnCurves emit_yarn(const StitchMesh& mesh, const StitchLibrary& library, const EmitOptions& options, EmitReport* report) {
+relax::YarnCurves emit_yarn(const StitchMesh& mesh, const StitchLibrary& library, const EmitOptions& options, EmitReport* report) {
   options.validate();
   const StitchReport check = validate(mesh);
   if (!check.valid()) throw Error("", "stitch mesh", "is not valid, so no yarn can be emitted:\n" + check.summary(5));
   EmitReport local;
-  YarnCurves yarn = Emitter(mesh, library, options).run(report ? *report : local);
+  relax::YarnCurves yarn = Emitter(mesh, library, options).run(report ? *report : local);
   if (!mesh.palette.empty()) {  // each piece of yarn in its stitch's colour
     std::vector<int> face_colour;
     for (const auto& f : mesh.faces) face_colour.push_back(f.colour);

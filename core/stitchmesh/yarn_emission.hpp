@@ -1,7 +1,7 @@
 #pragma once
+#include "relax/yarn_curves.hpp"
 #include "stitchmesh/stitch_mesh.hpp"
 #include "stitchmesh/stitch_model.hpp"
-#include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::mesh {
 
@@ -25,6 +25,6 @@ struct EmitReport {
 /// opposite wale directions); borders get cast-on stitches, bind-off pieces, turns and tied ends.
 /// Throws skein::Error for an invalid mesh, a stitch type without a model, a cable without a model, or two
 /// faces of one row with opposite wale directions.
-YarnCurves emit_yarn(const StitchMesh& mesh, const StitchLibrary& library, const EmitOptions& options, EmitReport* report = nullptr);
+relax::YarnCurves emit_yarn(const StitchMesh& mesh, const StitchLibrary& library, const EmitOptions& options, EmitReport* report = nullptr);
 
 }  // namespace skein::mesh

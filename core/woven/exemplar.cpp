@@ -10,10 +10,10 @@
 #include <Eigen/Geometry>
 
 #include "common/error.hpp"
-#include "relax/yarn_io.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_shape.hpp"
 
 namespace skein::woven {
 
@@ -107,7 +107,7 @@ struct Fibres {
 
 }  // namespace
 
-Exemplar voxelize(const mesh::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves,
+Exemplar voxelize(const relax::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves,
                   const Eigen::Vector2d& corner, const ExemplarOptions& options) {
   const double spacing = options.spacing > 0 ? options.spacing : 3 * options.radius;
   const double r = options.radius, voxel = spacing / options.voxels_per_crossing;
@@ -131,7 +131,7 @@ Exemplar voxelize(const mesh::YarnCurves& yarn, const std::vector<int>& warp_cur
   g.allocate();
 
   const int samples_per_segment = static_cast<int>(std::ceil(4 * spacing / voxel));
-  const auto sampled = relax::sample_curves(yarn, samples_per_segment);
+  const auto sampled = workflow::sample_curves(yarn, samples_per_segment);
   std::vector<float> nearest(g.size(), std::numeric_limits<float>::infinity());
   std::vector<int> nearest_sample(g.size(), -1);
   std::mt19937_64 random(options.seed ^ 0x5EEDull);

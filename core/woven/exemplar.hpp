@@ -80,7 +80,7 @@ Exemplar make_exemplar(const mesh::Pattern& pattern, const ExemplarOptions& opti
 
 /// Voxelizes relaxed woven yarn as make_exemplar does: `warp_curves` and `weft_curves` the yarns in order, the
 /// window's lower corner at `corner` (x, y; the crossing of warp 0 and weft 0 half a spacing inside it).
-Exemplar voxelize(const mesh::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves,
+Exemplar voxelize(const relax::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves,
                   const Eigen::Vector2d& corner, const ExemplarOptions& options);
 
 /// OpenVDB files: grids "density" (float), "orientation" (vec3s) and "yarn" (int32) on a transform of the voxel

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "relax/yarn_io.hpp"
+#include "workflow/yarn_io.hpp"
 
 namespace skein::woven {
 
@@ -93,8 +93,8 @@ std::optional<std::pair<double, double>> crossing_heights(const std::vector<Eige
 
 }  // namespace
 
-Weave detect_weave(const mesh::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves) {
-  const auto samples = relax::sample_curves(yarn, 8);
+Weave detect_weave(const relax::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves) {
+  const auto samples = workflow::sample_curves(yarn, 8);
   Weave w = make_weave(static_cast<int>(warp_curves.size()), static_cast<int>(weft_curves.size()));
   for (int i = 0; i < w.wefts; ++i)
     for (int j = 0; j < w.warps; ++j) {

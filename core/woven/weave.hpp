@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
+#include "relax/yarn_curves.hpp"
 #include "stitchmesh/pattern.hpp"
-#include "stitchmesh/yarn_curves.hpp"
 
 namespace skein::woven {
 
@@ -39,6 +39,6 @@ Weave weave_from_labels(const std::vector<int>& labels, int width, int height, c
 /// its centreline lies above the weft's there. `warp_curves` and `weft_curves` list the curves in order.
 /// Zhao uses the sign of the Gauss linking integral; for a single-layer weave that is the same test.
 /// Throws skein::Error when a warp and a weft do not cross in projection.
-Weave detect_weave(const mesh::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves);
+Weave detect_weave(const relax::YarnCurves& yarn, const std::vector<int>& warp_curves, const std::vector<int>& weft_curves);
 
 }  // namespace skein::woven

@@ -17,9 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "relax/yarn_options.hpp"
-#include "relax/yarn_io.hpp"
 #include "stitchmesh/fabric.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_options.hpp"
 #include "testing.hpp"
 
 using skein::testing::ScratchDir;
@@ -329,7 +329,7 @@ TEST(Cli, RelaxYarnAndPatternWriteTheStitchIdsToo) {  // and pattern's chart pic
     EXPECT_EQ(id.point, points++);
     if (id.face >= 0) faces.insert(id.face), types.insert(id.type);
   }
-  EXPECT_EQ(points, static_cast<long>(skein::relax::read_bcc(dir / "p.bcc").points.size()));
+  EXPECT_EQ(points, static_cast<long>(skein::workflow::read_bcc(dir / "p.bcc").points.size()));
   EXPECT_EQ(faces.size(), 12u);  // 2 x 3 repeats of 2 x 1 stitches
   EXPECT_EQ(types, (std::set<std::string>{"k", "p"}));
   expect_refused("pattern " + std::string(SKEIN_PATTERNS_DIR) + "/rib-1x1.knit --relax --ids " + (dir / "q.csv").string(), dir / "q.bcc",
@@ -623,13 +623,13 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   EXPECT_EQ(repeat[1].get<double>(), 5.0);
   EXPECT_GT(repeat[0].get<double>(), 6.0);
   // The preview is tiled at the relaxed period: wider than the emitted 2 x 6 mm.
-  const auto preview = skein::relax::read_bcc(dir / "p.bcc");
+  const auto preview = skein::workflow::read_bcc(dir / "p.bcc");
   double lo = 1e9, hi = -1e9;
   for (const auto& p : preview.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
   r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "e.bcc").string() + " --tile 2x2");
   ASSERT_EQ(r.status, 0) << r.output;
   double elo = 1e9, ehi = -1e9;
-  for (const auto& p : skein::relax::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
+  for (const auto& p : skein::workflow::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
   EXPECT_GT(hi - lo, ehi - elo + 0.5);
   // Refused, naming the option, with nothing written.
   const std::array<std::pair<const char*, const char*>, 4> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
@@ -659,7 +659,7 @@ TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
   // Worsted: its radius (10 wraps per inch) and its standard gauge, 18 stitches and 23.4 rows in 10 cm.
   auto r = run_skein("pattern " + patterns + "/stockinette.knit --yarn worsted -o " + (dir / "w.bcc").string() + " --report " + (dir / "w.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NEAR(skein::relax::read_bcc(dir / "w.bcc").radius, 1.27, 1e-6);
+  EXPECT_NEAR(skein::workflow::read_bcc(dir / "w.bcc").radius, 1.27, 1e-6);
   auto report = slurp(dir / "w.json");
   for (const char* key : {"\"weight\": \"worsted\"", "\"stitches\": 18.0", "\"munden_loop_length_mm\": 22.2", "\"stitch_mm\": [\n"})
     EXPECT_NE(report.find(key), std::string::npos) << key << "\n" << report;
@@ -669,7 +669,7 @@ TEST(Cli, YarnWeightAndGaugeSetTheStitchSizeAndTheRadius) {
   ASSERT_EQ(r.status, 0) << r.output;
   report = slurp(dir / "g.json");
   EXPECT_NE(report.find("\"against_asked\""), std::string::npos) << report;
-  EXPECT_NEAR(skein::relax::read_bcc(dir / "g.bcc").radius, 0.5, 1e-6);  // a tenth of the 5 mm stitch without --yarn
+  EXPECT_NEAR(skein::workflow::read_bcc(dir / "g.bcc").radius, 0.5, 1e-6);  // a tenth of the 5 mm stitch without --yarn
   // A gauge sets the tessellation's stitch size.
   r = run_skein("stitch " + kModels + "/tube.obj --auto-label --gauge 10x12.5 -o " + (dir / "t.skein").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -740,7 +740,7 @@ TEST(Cli, PatternTilesEmitsAndRelaxes) {
   // The preview is the 3 x 2 tiling's yarn, placed from the relaxed repeat.
   r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "emitted.bcc").string() + " --tile 3x2");
   ASSERT_EQ(r.status, 0) << r.output;
-  const auto preview = skein::relax::read_bcc(dir / "preview.bcc"), emitted = skein::relax::read_bcc(dir / "emitted.bcc");
+  const auto preview = skein::workflow::read_bcc(dir / "preview.bcc"), emitted = skein::workflow::read_bcc(dir / "emitted.bcc");
   EXPECT_EQ(preview.curve_start, emitted.curve_start);
   EXPECT_NE(preview.points, emitted.points);
   r = run_skein("pattern " + patterns + "/seed.knit -o " + (dir / "y.bcc").string() + " --preview " + (dir / "p.bcc").string());
@@ -812,10 +812,10 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
                                        "jam_drop", "max_move", "contact_spacing", "checkpoint_every", "checkpoint_minutes", "k_bend", "k_stretch",
                                        "k_length", "k_contact"};
   int checked = 0;
-  for (const auto& option : skein::relax::yarn_options()) {
+  for (const auto& option : skein::workflow::yarn_options()) {
     if (!job_keys.count(option.key)) continue;
     SCOPED_TRACE(option.key);
-    const std::string too_big = option.kind == skein::relax::YarnOption::Kind::Integer ? std::to_string(static_cast<long>(option.high) + 1) : "1e12";
+    const std::string too_big = option.kind == skein::workflow::YarnOption::Kind::Integer ? std::to_string(static_cast<long>(option.high) + 1) : "1e12";
     auto r = run_skein("relax-yarn none.bcc " + option.flag() + " " + too_big + " -o " + (dir / "x.bcc").string());
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.output.find(option.flag() + ": must be in " + option.range()), std::string::npos) << r.output;
@@ -960,14 +960,14 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
   EXPECT_NEAR(fabric.at("yarn_per_stitch_mm").get<double>(), munden, 1e-6 * munden);
   const double to_munden = fabric.at("take_up_to_munden").get<double>();
   EXPECT_GT(std::abs(to_munden - 1), 0.05) << "the emitted loops are Munden's already: the test shows nothing";
-  for (const char* file : {"yarn.bcc", "yarn-relaxed.bcc"}) EXPECT_NEAR(skein::relax::read_bcc(dir / "job" / file).radius, full, 1e-9) << file;
+  for (const char* file : {"yarn.bcc", "yarn-relaxed.bcc"}) EXPECT_NEAR(skein::workflow::read_bcc(dir / "job" / file).radius, full, 1e-9) << file;
   // The same through relax-yarn on the job's project; a take-up given is kept.
   const auto project = (dir / "job" / "relaxed.skein").string();
   r = run_skein("relax-yarn " + project + " --yarn dk --max-steps 0 --no-audit -o " + (dir / "r.bcc").string() + " --report " + (dir / "r.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
   auto relaxed = nlohmann::json::parse(slurp(dir / "r.json"));
   EXPECT_NEAR(relaxed.at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
-  EXPECT_NEAR(skein::relax::read_bcc(dir / "r.bcc").radius, full, 1e-9);
+  EXPECT_NEAR(skein::workflow::read_bcc(dir / "r.bcc").radius, full, 1e-9);
   r = run_skein("relax-yarn " + project + " --yarn dk --take-up 0.95 --max-steps 0 --no-audit -o " + (dir / "t.bcc").string() + " --report " +
                 (dir / "t.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -986,7 +986,7 @@ TEST(Job, AYarnWeightRelaxesAGarmentAtItsCompressedContactAndMundensLoopLength) 
   relaxed = nlohmann::json::parse(slurp(dir / "w.json"));
   EXPECT_EQ(relaxed.at("fabric").at("yarn").get<std::string>(), "dk");
   EXPECT_NEAR(relaxed.at("fabric").at("take_up_to_munden").get<double>(), to_munden, 1e-9);
-  EXPECT_NEAR(skein::relax::read_bcc(dir / "w.bcc").radius, full, 1e-9);
+  EXPECT_NEAR(skein::workflow::read_bcc(dir / "w.bcc").radius, full, 1e-9);
   // A saved weight cannot hold where --yarn cannot: the error names the project's line.
   expect_refused("relax-yarn " + saved.string() + " --stand-in", dir / "s.bcc", "set yarn.weight dk: relaxes a whole garment");
   // Other saved settings do not stop --yarn from cutting the yarn to Munden's loop length (a saved take-up is the app's,
@@ -1164,12 +1164,12 @@ TEST(Cli, AuditWithTheStitchIdsNamesTheStitchesOfEachCrossing) {
   ASSERT_EQ(run_skein("stitch " + kModels + "/swatch.obj --auto-label --stitch-size 15 -o " + project.string()).status, 0);
   ASSERT_EQ(run_skein("yarn " + project.string() + " -o " + (dir / "a.bcc").string() + " --ids " + (dir / "ids.csv").string()).status, 0);
   // A negative control: one control point of a stitch pulled 1.5 stitches up through the rows above it.
-  auto yarn = skein::relax::read_bcc(dir / "a.bcc");
+  auto yarn = skein::workflow::read_bcc(dir / "a.bcc");
   const auto ids = read_ids(dir / "ids.csv");
   int p = static_cast<int>(yarn.points.size()) / 2;
   while (ids[p].face < 0) ++p;
   yarn.points[p].y() += 20;
-  skein::relax::write_bcc(yarn, dir / "b.bcc");
+  skein::workflow::write_bcc(yarn, dir / "b.bcc");
   auto r = run_skein("audit " + (dir / "a.bcc").string() + " " + (dir / "b.bcc").string() + " --ids " + (dir / "ids.csv").string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("[face " + std::to_string(ids[p].face) + ", row " + std::to_string(ids[p].row) + ", " + ids[p].type + "]"), std::string::npos)
@@ -1217,7 +1217,7 @@ TEST(Cli, AYarnWeightRelaxesToItsGaugeAtItsCompressedContactAndMundensLoopLength
   EXPECT_NEAR(report["free_period"]["against_asked"]["loop_length"].get<double>(), 1.0, 1e-6);
   EXPECT_TRUE(report["converged"].get<bool>());
   EXPECT_NEAR(report["fabric"]["contact_radius_mm"].get<double>(), 0.46 * 25.4 / 13 / 2, 1e-6);
-  EXPECT_NEAR(skein::relax::read_bcc(dir / "d.bcc").radius, 25.4 / 13 / 2, 1e-6);
+  EXPECT_NEAR(skein::workflow::read_bcc(dir / "d.bcc").radius, 25.4 / 13 / 2, 1e-6);
   // A take-up given is kept: the yarn is not cut to Munden's length then.
   r = run_skein("pattern " + patterns + "/stockinette.knit --yarn dk --take-up 1 --relax --free-period --no-audit --max-steps 50 -o " +
                 (dir / "t.bcc").string() + " --report " + (dir / "t.json").string());

@@ -28,11 +28,11 @@
 #include "smocking_dialog.hpp"
 #include "woven/exemplar.hpp"
 #include "woven_dialog.hpp"
-#include "relax/yarn_io.hpp"
-#include "relax/yarn_options.hpp"
 #include "render/stitch_view.hpp"
 #include "stitchmesh/fabric.hpp"
 #include "stitchmesh/labeling.hpp"
+#include "workflow/yarn_io.hpp"
+#include "workflow/yarn_options.hpp"
 #include "viewport.hpp"
 #include "yarn_settings.hpp"
 
@@ -380,7 +380,7 @@ private slots:
     // Exports, and the project read back.
     QTemporaryDir dir;
     QVERIFY(w.export_yarn(dir.filePath("yarn.bcc")));
-    QCOMPARE(relax::read_bcc(dir.filePath("yarn.bcc").toStdString()).points.size(), emitted.points.size());
+    QCOMPARE(workflow::read_bcc(dir.filePath("yarn.bcc").toStdString()).points.size(), emitted.points.size());
     QVERIFY(w.export_yarn(dir.filePath("yarn.obj")));
     QVERIFY(QFileInfo(dir.filePath("yarn.obj")).size() > 1000);
     QVERIFY(w.export_stitch_ply(dir.filePath("stitches.ply")));
@@ -539,7 +539,7 @@ private slots:
     // One schema (relax/yarn_options.hpp) for the dialog, the CLI, jobs and projects.
     gui::YarnSettingsDialog dialog(gui::YarnSettings{});
     for (const auto& [name, key] : std::vector<std::pair<const char*, const char*>>{{"tolerance", "tolerance"}, {"takeUp", "take_up"}, {"contactSpacing", "contact_spacing"}}) {
-      const auto& spec = relax::yarn_option(key);
+      const auto& spec = workflow::yarn_option(key);
       auto* box = dialog.findChild<QDoubleSpinBox*>(name);
       QVERIFY2(box, name);
       // Its range rounded inward to the digits the box shows.
@@ -549,7 +549,7 @@ private slots:
       QCOMPARE(box->toolTip().toStdString(), spec.help);
     }
     for (const auto& [name, key] : std::vector<std::pair<const char*, const char*>>{{"maxSteps", "max_steps"}, {"jamSteps", "jam_steps"}, {"rings", "rings"}, {"halo", "halo"}}) {
-      const auto& spec = relax::yarn_option(key);
+      const auto& spec = workflow::yarn_option(key);
       auto* box = dialog.findChild<QSpinBox*>(name);
       QVERIFY2(box, name);
       QCOMPARE(box->minimum(), static_cast<int>(spec.low));
@@ -746,7 +746,7 @@ private slots:
     auto moved = *doc.state().stitch;
     moved.vertices[0].x() += 0.5;
     check("relaxed mesh", [&] { doc.set_relaxed_mesh(moved, {3, 2.5}); });
-    mesh::YarnCurves yarn;
+    relax::YarnCurves yarn;
     yarn.points = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
     yarn.curve_start = {0, 2};
     yarn.closed = {0};

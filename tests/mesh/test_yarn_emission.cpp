@@ -7,7 +7,7 @@
 
 #include "common/error.hpp"
 #include "garments.hpp"
-#include "relax/yarn_io.hpp"
+#include "workflow/yarn_io.hpp"
 #include "stitch_fixtures.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -54,13 +54,13 @@ mesh::StitchMesh swatch_with_shapes() {
 }
 
 /// How many control points sit at each crossing place of the edge u-v (crossings are emitted exactly there).
-int points_at(const mesh::YarnCurves& y, const Eigen::Vector3d& p) {
+int points_at(const relax::YarnCurves& y, const Eigen::Vector3d& p) {
   int n = 0;
   for (const auto& q : y.points) n += (q - p).norm() < 1e-9;
   return n;
 }
 
-void expect_continuous(const mesh::StitchMesh& s, const mesh::YarnCurves& y, const std::string& what) {
+void expect_continuous(const mesh::StitchMesh& s, const relax::YarnCurves& y, const std::string& what) {
   // Every interior wale edge is crossed once, every interior course edge twice, at the conventional places.
   int checked = 0;
   for (const auto& [key, uses] : mesh::edge_table(s)) {
@@ -86,7 +86,7 @@ void expect_continuous(const mesh::StitchMesh& s, const mesh::YarnCurves& y, con
   }
 }
 
-double overlap_depth(const mesh::YarnCurves& y) { return (2 * y.radius - relax::yarn_stats(y).min_segment_distance) / y.radius; }
+double overlap_depth(const relax::YarnCurves& y) { return (2 * y.radius - workflow::yarn_stats(y).min_segment_distance) / y.radius; }
 }  // namespace
 
 TEST(YarnEmission, StockinetteSwatchIsOneYarnTurningAtTheSides) {
@@ -169,7 +169,7 @@ TEST(YarnEmission, CableFaceCrossesLoops) {
   }
   ASSERT_GT(row_height, 0);
   EXPECT_GT(high - low, 0.8 * row_height) << "the cable's strands rise " << high - low << " mm";
-  EXPECT_GT(relax::yarn_stats(y).min_segment_distance, 0.5 * y.radius);
+  EXPECT_GT(workflow::yarn_stats(y).min_segment_distance, 0.5 * y.radius);
   // A cable of 4 over 1 has no model.
   auto wide = stitched(models::swatch());
   wide = mesh::mark_cable(wide, mesh::top_edge_path(wide, 5, 2, 7), 4, 1);
@@ -184,7 +184,7 @@ TEST(YarnEmission, EveryBundledGarmentEmits) {
     expect_continuous(s, y, g.name);
     // Stitches sheared by the input mesh (where sleeves and thumb join) overlap deeper until mesh relaxation
     // evens them out; but no two centrelines may meet, or yarn relaxation could not keep the yarns apart.
-    const auto stats = relax::yarn_stats(y);
+    const auto stats = workflow::yarn_stats(y);
     EXPECT_GT(stats.min_segment_distance, 0.0) << g.name;
     std::printf("  %-9s %zu control points, overlap depth %.2f r\n", g.name.c_str(), y.points.size(), overlap_depth(y));
   }
@@ -221,21 +221,21 @@ int linking_number(const std::vector<Eigen::Vector3d>& a, const std::vector<Eige
   return sum / 2;
 }
 
-int index_at(const mesh::YarnCurves& y, const Eigen::Vector3d& p) {
+int index_at(const relax::YarnCurves& y, const Eigen::Vector3d& p) {
   for (size_t i = 0; i < y.points.size(); ++i)
     if ((y.points[i] - p).norm() < 1e-9) return static_cast<int>(i);
   return -1;
 }
 
 /// Points [from, to] of one open curve, in order.
-std::vector<Eigen::Vector3d> stretch(const mesh::YarnCurves& y, int from, int to) {
+std::vector<Eigen::Vector3d> stretch(const relax::YarnCurves& y, int from, int to) {
   if (from > to) std::swap(from, to);
   return {y.points.begin() + from, y.points.begin() + to + 1};
 }
 
 /// Yuksel's stitch as a clasp: the head of the loop below (closed along its bottom edge) and the yarn that dips
 /// between the stitch and its left neighbour (closed along the top course line). Hooked: ±1; not hooked: 0.
-int clasp_linking(const mesh::StitchMesh& s, const mesh::YarnCurves& y, int row, int col) {
+int clasp_linking(const mesh::StitchMesh& s, const relax::YarnCurves& y, int row, int col) {
   const auto rows = mesh::faces_by_row(s);
   const auto& g = s.faces[rows[row][col]];
   const auto& left = s.faces[rows[row][col - 1]];

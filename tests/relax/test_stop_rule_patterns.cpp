@@ -12,13 +12,14 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
+#include "workflow/yarn_periodic.hpp"
 
 using namespace skein;
 using namespace skein::relax;
+using namespace skein::workflow;
 
 TEST(YarnStopRule, PatternsOfEveryFamilyConvergedByLbfgsLoseUnderOnePercentMoreWhenContinued) {
   // skein pattern --relax's defaults: L-BFGS under the force rule. Runs are deterministic, so a run capped at

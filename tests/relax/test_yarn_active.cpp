@@ -10,15 +10,16 @@
 
 #include "common/error.hpp"
 #include "relax/yarn_active.hpp"
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_standin.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_periodic.hpp"
+#include "workflow/yarn_standin.hpp"
 #include "yarn_fixtures.hpp"
 
 using namespace skein;
 using namespace skein::relax;
+using namespace skein::workflow;
 
 namespace {
 /// Every `stride`-th control point moved by a small offset that differs from point to point.
@@ -165,7 +166,7 @@ namespace {
 /// The reference for a stand-in on a flat sheet of a pattern: the pattern's periodic patch relaxed as the
 /// stand-in relaxes it, tiled over the sheet's emitted `yarn`.
 TiledPreview tiled_relaxed_patch(const mesh::Pattern& pattern, const mesh::StitchSize& size, double take_up, const std::map<std::string, double>& take_up_by_type,
-                                 const YarnRelaxOptions& options, const mesh::YarnCurves& yarn) {
+                                 const YarnRelaxOptions& options, const relax::YarnCurves& yarn) {
   auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), size, 0.6);
   const auto system = make_yarn_system(patch.yarn, take_up, take_up_by_type);
   auto shape = options.shape;

@@ -12,14 +12,15 @@
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_cell.hpp"
 #include "relax/yarn_contacts.hpp"
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_periodic.hpp"
 
 using namespace skein;
 using namespace skein::relax;
+using namespace skein::workflow;
 
 namespace {
 

@@ -6,14 +6,15 @@
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_model.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/pattern.hpp"
+#include "workflow/yarn_shape.hpp"
 #include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
 using namespace skein;
 using namespace skein::relax;
+using namespace skein::workflow;
 using V = model::Vec3<double>;
 
 namespace {
@@ -93,7 +94,7 @@ TEST(YarnModel, IntrinsicGradientMatchesFiniteDifferences) {
 TEST(YarnModel, ContactGradientMatchesFiniteDifferencesIncludingTheSoftCore) {
   for (const double gap : {0.8, 0.15}) {  // ordinary overlap, and centrelines inside the linear core
     // Two open yarns of four points crossing each other `gap` apart (yarn radius 0.5).
-    mesh::YarnCurves yarn;
+    relax::YarnCurves yarn;
     yarn.radius = 0.5;
     for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), {1, 0.1, 0}, {2, -0.1, 0.1}, {3, 0, 0}, {1.5, -1.5, gap}, {1.6, -0.5, gap + 0.05},
                                     {1.4, 0.5, gap - 0.05}, {1.5, 1.5, gap}})

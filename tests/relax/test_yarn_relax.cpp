@@ -16,21 +16,22 @@
 #include "relax/pull_through_guard.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
-#include "relax/yarn_periodic.hpp"
 #include "relax/yarn_relax.hpp"
-#include "relax/yarn_options.hpp"
-#include "relax/yarn_settings.hpp"
 #include "stitchmesh/pattern.hpp"
+#include "workflow/yarn_options.hpp"
+#include "workflow/yarn_periodic.hpp"
+#include "workflow/yarn_settings.hpp"
 #include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
 using namespace skein;
 using namespace skein::relax;
+using namespace skein::workflow;
 using Eigen::Vector3d;
 
 namespace {
 
-std::vector<Vector3d> curve_points(const mesh::YarnCurves& y, int c) {
+std::vector<Vector3d> curve_points(const relax::YarnCurves& y, int c) {
   return {y.points.begin() + y.curve_start[c], y.points.begin() + y.curve_start[c + 1]};
 }
 
@@ -72,7 +73,7 @@ TEST(YarnAudit, LinkingNumbersSeeARingHookedCloserThanFourSamplesASegmentResolve
   // A: a closed Catmull-Rom curve through the four corners of a diamond (a rounded square, 5 mm). B: a ring of
   // radius 0.02 mm around A's curve where four samples a segment cut the corner by three times that, so B
   // hooks the curve but not the coarse polyline; the fixed 4-sample rule called this pair unlinked.
-  mesh::YarnCurves y;
+  relax::YarnCurves y;
   y.radius = 0.3;
   y.points = {{5, 0, 0}, {0, 5, 0}, {-5, 0, 0}, {0, -5, 0}};
   const auto cr = [](const Vector3d& p0, const Vector3d& p1, const Vector3d& p2, const Vector3d& p3, double t) {
@@ -175,7 +176,7 @@ TEST(PullThroughGuard, HeldYarnsThatHoldOthersPastTheHoldRoundsHoldTheWholeStep)
   // the CUDA guard's policy too).
   for (const int yarns : {4, 6}) {
     SCOPED_TRACE(yarns);
-    mesh::YarnCurves yarn;
+    relax::YarnCurves yarn;
     yarn.radius = 0.5;
     yarn.curve_start = {0};
     for (int k = 0; k < yarns; ++k) {
@@ -322,7 +323,7 @@ TEST(YarnRelax, AClippedStopScaleRelaxesPastAKink) {
   // Thirty rings far apart (2,160 points), one point of one pulled out into a kink: its forces dominate
   // |∇E_0|, so Leaf's relative rule is met once the kink has eased. Clipped, the scale leaves the largest 0.1 %
   // of the forces (2) out and the run relaxes the rings further.
-  mesh::YarnCurves yarn;
+  relax::YarnCurves yarn;
   yarn.radius = 0.5;
   for (int k = 0; k < 30; ++k) skein::testing::add_ring(yarn, {10.0 * k, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, 72);
   yarn.points[0].x() += 1.5;

@@ -19,7 +19,7 @@ using namespace skein::relax;
 
 namespace {
 /// A straight open yarn along `direction` through `start`, `n` points `step` apart.
-void add_line(mesh::YarnCurves& yarn, const Eigen::Vector3d& start, const Eigen::Vector3d& direction, double step, int n) {
+void add_line(relax::YarnCurves& yarn, const Eigen::Vector3d& start, const Eigen::Vector3d& direction, double step, int n) {
   for (int k = 0; k < n; ++k) {
     yarn.points.push_back(start + k * step * direction);
     yarn.point_face.push_back(-1);
@@ -29,8 +29,8 @@ void add_line(mesh::YarnCurves& yarn, const Eigen::Vector3d& start, const Eigen:
   yarn.closed.push_back(0);
 }
 
-mesh::YarnCurves line(double radius, double step, int n) {
-  mesh::YarnCurves yarn;
+relax::YarnCurves line(double radius, double step, int n) {
+  relax::YarnCurves yarn;
   yarn.radius = radius;
   add_line(yarn, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), step, n);
   return yarn;
@@ -73,7 +73,7 @@ TEST(ContactSampling, UnevenParameterSpeedGetsMoreSamplesThanAnEvenSegmentOfItsL
   // The segment from x = 0.5 r to 5 r between neighbours at 0 and 14 r runs slowly at first and fast at the
   // end: at uniform parameter steps its second half holds more arc than the even segment's 2.25 r.
   const double r = 0.5;
-  mesh::YarnCurves uneven;
+  relax::YarnCurves uneven;
   uneven.radius = r;
   for (double x : {0.0, 0.5, 5.0, 14.0}) {
     uneven.points.push_back({x * r, 0, 0});
@@ -95,7 +95,7 @@ TEST(ContactSampling, AtTheLargestSpacingCrossingYarnsAlwaysHaveSamplesCloserTha
   const double r = 0.5, step = 2.8 * r;
   for (double dx : {0.0, 0.25, 0.5, 0.75})
     for (double dy : {0.0, 0.25, 0.5, 0.75}) {
-      mesh::YarnCurves yarn;
+      relax::YarnCurves yarn;
       yarn.radius = r;
       add_line(yarn, {-5 * step, 0, 0}, Eigen::Vector3d::UnitX(), step, 11);
       add_line(yarn, {dx * step, -5 * step + dy * step, 0}, Eigen::Vector3d::UnitY(), step, 11);

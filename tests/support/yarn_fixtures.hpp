@@ -6,18 +6,18 @@
 #include <Eigen/Core>
 
 #include "garments.hpp"
-#include "relax/yarn_shape.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/tessellation.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "workflow/yarn_shape.hpp"
 
 namespace skein::testing {
 
 /// A closed ring of `n` points of radius `radius` around `centre`, in the plane spanned by `u` and `v`.
-inline void add_ring(mesh::YarnCurves& yarn, const Eigen::Vector3d& centre, const Eigen::Vector3d& u, const Eigen::Vector3d& v, double radius,
+inline void add_ring(relax::YarnCurves& yarn, const Eigen::Vector3d& centre, const Eigen::Vector3d& u, const Eigen::Vector3d& v, double radius,
                      int n) {
   for (int k = 0; k < n; ++k) {
     const double a = 2 * M_PI * k / n;
@@ -30,8 +30,8 @@ inline void add_ring(mesh::YarnCurves& yarn, const Eigen::Vector3d& centre, cons
 }
 
 /// Two rings through each other (a Hopf link), each of radius 3 mm, yarn radius r.
-inline mesh::YarnCurves linked_rings(double r = 0.5, int n = 24) {
-  mesh::YarnCurves yarn;
+inline relax::YarnCurves linked_rings(double r = 0.5, int n = 24) {
+  relax::YarnCurves yarn;
   yarn.radius = r;
   add_ring(yarn, {0, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 3, n);
   add_ring(yarn, {3, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 3, n);
@@ -50,7 +50,7 @@ inline mesh::StitchMesh small_piece(const mesh::InputMesh& m, const std::string&
   return s;
 }
 
-inline mesh::YarnCurves yarn_of(const mesh::StitchMesh& s, double radius = 1.0) {
+inline relax::YarnCurves yarn_of(const mesh::StitchMesh& s, double radius = 1.0) {
   mesh::EmitOptions options;
   options.yarn_radius = radius;
   return mesh::emit_yarn(s, mesh::StitchLibrary::bundled(), options);
@@ -59,7 +59,7 @@ inline mesh::YarnCurves yarn_of(const mesh::StitchMesh& s, double radius = 1.0) 
 /// A small knitted piece of a bundled model: its stitch mesh, yarn, system and shape targets.
 struct Knitted {
   mesh::StitchMesh piece;
-  mesh::YarnCurves yarn;
+  relax::YarnCurves yarn;
   relax::YarnSystem system;
   relax::ShapeTargets targets;
 };
@@ -68,7 +68,7 @@ inline Knitted knitted(const mesh::InputMesh& m, const std::string& fill, mesh::
   k.piece = small_piece(m, fill, size);
   k.yarn = yarn_of(k.piece);
   k.system = relax::make_yarn_system(k.yarn);
-  k.targets = relax::shape_targets(k.piece, k.yarn, {});
+  k.targets = workflow::shape_targets(k.piece, k.yarn, {});
   return k;
 }
 
