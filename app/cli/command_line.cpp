@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -55,17 +57,12 @@ using nlohmann::json;
 namespace skein::cli {
 namespace {
 
-/// A yarn option's flag as the schema declares it (relax/yarn_options.hpp): its help, unit and range, the same as
-/// in jobs, sweeps, projects and the app. `prefix` says when it applies ("with --relax: "), `suffix` adds what only this command does.
-template <class T>
-CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, const std::string& prefix = "", const std::string& suffix = "") {
-  const auto& spec = workflow::yarn_option(key);
-  const std::string unit = spec.unit.empty() ? "" : " [" + spec.unit + "]";
-  auto* option = app->add_option(spec.flag(), target, prefix + spec.help + unit + suffix);
-  if (spec.kind == workflow::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
-  option->check(CLI::Validator(
-      [&spec](std::string& text) -> std::string {
-        const bool whole = spec.kind == workflow::YarnOption::Kind::Integer;
+/// A number flag's check in the words every skein message uses: "expected a (whole) number, found TEXT" or "must be
+/// in [LOW, HIGH] UNIT, found TEXT (WHY)"; `allows` says whether a number is in range, `range` how to name it.
+CLI::Validator number_check(bool whole, std::function<bool(double)> allows, std::string range, std::string unit = "", std::string why = "") {
+  const std::string shown = range + (unit.empty() ? "" : " " + unit);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
         const std::string expected = whole ? "expected a whole number, found " : "expected a number, found ";
         double x = 0;
         try {
@@ -75,11 +72,37 @@ CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, c
         } catch (const std::exception&) {
           return expected + text;
         }
-        if (whole && x != std::floor(x)) return expected + text;
-        if (spec.allows(x)) return {};
-        return "must be in " + spec.range() + (spec.unit.empty() ? "" : " " + spec.unit) + ", found " + text + " (" + spec.help + ")";
+        if (!std::isfinite(x) || (whole && x != std::floor(x))) return expected + text;
+        if (allows(x)) return {};
+        return "must be in " + shown + ", found " + text + (why.empty() ? "" : " (" + why + ")");
       },
-      spec.range()));
+      range);
+}
+
+/// A number in [low, high] (inclusive).
+CLI::Validator in_range(double low, double high, const std::string& unit = "") {
+  const auto text = [](double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  };
+  return number_check(false, [=](double x) { return x >= low && x <= high; }, "[" + text(low) + ", " + text(high) + "]", unit);
+}
+
+/// A whole number in [low, high].
+CLI::Validator whole_in_range(long low, long high, const std::string& unit = "") {
+  return number_check(true, [=](double x) { return x >= low && x <= high; }, "[" + std::to_string(low) + ", " + std::to_string(high) + "]", unit);
+}
+
+/// A yarn option's flag as the schema declares it (relax/yarn_options.hpp): its help, unit and range, the same as
+/// in jobs, sweeps, projects and the app. `prefix` says when it applies ("with --relax: "), `suffix` adds what only this command does.
+template <class T>
+CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, const std::string& prefix = "", const std::string& suffix = "") {
+  const auto& spec = workflow::yarn_option(key);
+  const std::string unit = spec.unit.empty() ? "" : " [" + spec.unit + "]";
+  auto* option = app->add_option(spec.flag(), target, prefix + spec.help + unit + suffix);
+  if (spec.kind == workflow::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
+  option->check(number_check(spec.kind == workflow::YarnOption::Kind::Integer, [&spec](double x) { return spec.allows(x); }, spec.range(), spec.unit, spec.help));
   return option->capture_default_str();
 }
 
@@ -150,7 +173,7 @@ int run_command_line(int argc, char** argv) {
   FabricChoice stitch_fabric;
   double max_stitches = mesh::kDefaultMaxStitches;
   stitch->add_option("--max-stitches", max_stitches, "refuse a mesh that would make more stitches than this (its area over the stitch's)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(positive())->capture_default_str();
   add_fabric(stitch, stitch_fabric, "without --gauge, sets the stitch size of its standard gauge", true);
 
   // skein label
@@ -305,11 +328,12 @@ int run_command_line(int argc, char** argv) {
   ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
   ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
-  ry->add_flag("--active-set", ry_options.active_set.enabled,
-               "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
-  ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")->capture_default_str();
+  auto* active_set = ry->add_flag("--active-set", ry_options.active_set.enabled,
+                                  "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
+  ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")
+      ->check(positive())->needs(active_set)->capture_default_str();
   ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
-      ->capture_default_str();
+      ->check(positive())->needs(active_set)->capture_default_str();
   add_yarn_option(ry, "contact_spacing", ry_options.sampling.spacing);
   std::string ry_warm, ry_warm_project;
   workflow::LocalRelaxOptions ry_local;
@@ -381,7 +405,7 @@ int run_command_line(int argc, char** argv) {
   pat->add_option("--period", pat_period, "with --relax: the repeat's period x its emitted size, along the course x the wale (e.g. 0.9x1)");
   double pat_gamma = 1;
   pat->add_option("--gamma", pat_gamma, "with --relax: relax at gamma x the yarn radius and scale back by 1/gamma: 1/gamma of the yarn length (Leaf 2018 §6.2)")
-      ->check(CLI::Range(0.25, 4.0))->capture_default_str();
+      ->check(in_range(relax::kMinGamma, relax::kMaxGamma))->capture_default_str();
   pat->add_option("--stitches", pat_stitches, "stitch library folder (default: the bundled stitches/)");
   pat->add_option("--backend", pat_backend, "with --relax: auto, cpu or cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}))->capture_default_str();
   add_yarn_option(pat, "max_steps", pat_options.max_steps, "with --relax: ");
@@ -410,7 +434,7 @@ int run_command_line(int argc, char** argv) {
   int pat_panel = 900;
   pat->add_option("--views", pat_views, "flat (front and back), front, or three (front, back, three-quarter), for --png and --preview-png")
       ->check(CLI::IsMember({"flat", "front", "three"}))->capture_default_str();
-  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(CLI::Range(64, 4096))->capture_default_str();
+  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(whole_in_range(64, 4096))->capture_default_str();
   std::string pat_onto, pat_rows;
   int pat_face = 0;
   auto* onto_opt = pat->add_option("--onto", pat_onto, "tile the pattern onto this project's stitch mesh instead (-o writes the project)");
@@ -425,9 +449,9 @@ int run_command_line(int argc, char** argv) {
   smock->add_option("PATTERN", sm.input, "smocking pattern (.smock, docs/smocking.md), or an .svg drawing of its stitches (front solid, back dashed)")->required();
   smock->add_option("--style", sm.style, "an .svg drawing's style: italian (default), canadian or english");
   smock->add_option("--svg-grid", sm.svg.grid, "an .svg drawing's grid spacing in its own units (default: the smallest step between stitch ends)")
-      ->check(CLI::Range(1e-9, 1e9));
-  smock->add_option("--svg-margin", sm.svg.margin, "grid squares of fabric around an .svg drawing's stitches")->capture_default_str()->check(CLI::Range(0, 1000));
-  smock->add_option("--svg-spacing", sm.svg.spacing, "mm between grid points of an .svg drawing's pattern")->capture_default_str()->check(CLI::Range(0.1, 1000.0));
+      ->check(in_range(1e-9, 1e9));
+  smock->add_option("--svg-margin", sm.svg.margin, "grid squares of fabric around an .svg drawing's stitches")->capture_default_str()->check(whole_in_range(0, 1000));
+  smock->add_option("--svg-spacing", sm.svg.spacing, "mm between grid points of an .svg drawing's pattern")->capture_default_str()->check(in_range(0.1, 1000.0));
   smock->add_option("--write-smock", sm.write_smock, "the pattern as .smock text (what an .svg drawing was read as)");
   smock->add_option("-o,--output", sm.output, "the embedding as JSON: grid points flat and gathered, each stitch's lifted midpoint (eqs. 6-8)");
   smock->add_option("--obj", sm.obj, "the threads' positional constraints in 3-D as OBJ lines (z towards the front)");
@@ -438,16 +462,16 @@ int run_command_line(int argc, char** argv) {
                     "never passing through itself, certified by an exact triangle test");
   smock->add_option("--cloth-png", sm.cloth_png, "picture of the 3-D fabric, from the front and from the side");
   smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth: fine squares per side of a pattern square (even)")->capture_default_str();
-  smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(CLI::Range(1e-6, 1.0));
+  smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(in_range(1e-6, 1.0));
   smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
-      ->check(CLI::Range(1e-6, 1e4));
+      ->check(in_range(1e-6, 1e4));
   smock->add_option("--pull", sm.pull, "pulling direction X,Y, or \"along\": each stitch pulled along itself (the paper's CURVE pattern)")->capture_default_str();
   smock->add_option("--snapshots", sm.options.snapshots, "also keep and draw the fabric when the threads first reach these fractions, e.g. 0.8,0.6,0.4")
-      ->delimiter(',')->check(CLI::Range(1e-6, 1.0));
+      ->delimiter(',')->check(in_range(1e-6, 1.0));
   bool smock_raw = false;
   smock->add_flag("--no-settle", smock_raw, "leave the pleat points where Algorithm 1 stops (the paper's output; the fabric may be stretched there)")
       ->each([&](const std::string&) { sm.options.settle = false; });
-  smock->add_option("--max-iterations", sm.options.max_iterations, "stop after this many iterations")->capture_default_str()->check(CLI::NonNegativeNumber);
+  smock->add_option("--max-iterations", sm.options.max_iterations, "stop after this many iterations")->capture_default_str()->check(whole_in_range(0, 1000000000));
 
   // skein weave-exemplar and weave-volume (issue 29)
   auto* wex = app.add_subcommand("weave-exemplar", "relax small woven patches and voxelize them as exemplars for weave-volume (Zhao 2012 §4, §6; docs/woven.md)");
@@ -455,20 +479,20 @@ int run_command_line(int argc, char** argv) {
   wex->add_option("PATTERN", wx.patterns, "woven patterns (.weave or .wif), one exemplar each")->required();
   wex->add_option("-o,--output", wx.output, "folder for the exemplars (one .vdb per pattern file, named as it)")->required();
   wex->add_option("--report", wx.report, "report (JSON; - for stdout)");
-  wex->add_option("--crossings", wx.options.crossings, "crossings along each side of an exemplar")->capture_default_str()->check(CLI::Range(2, 64));
-  wex->add_option("--radius", wx.options.radius, "yarn radius [mm]")->capture_default_str()->check(CLI::Range(0.01, 10.0));
-  wex->add_option("--spacing", wx.options.spacing, "crossing spacing [mm] (default: 3 radii)")->check(CLI::Range(0.02, 100.0));
+  wex->add_option("--crossings", wx.options.crossings, "crossings along each side of an exemplar")->capture_default_str()->check(whole_in_range(2, 64));
+  wex->add_option("--radius", wx.options.radius, "yarn radius [mm]")->capture_default_str()->check(in_range(0.01, 10.0));
+  wex->add_option("--spacing", wx.options.spacing, "crossing spacing [mm] (default: 3 radii)")->check(in_range(0.02, 100.0));
   wex->add_option("--tension", wx.options.tension, "the loom's tension: rest lengths are the emitted lengths times 1 - tension")
-      ->capture_default_str()->check(CLI::Range(0.0, 0.19));
-  wex->add_option("--voxels", wx.options.voxels_per_crossing, "voxels per crossing along x and y")->capture_default_str()->check(CLI::Range(4, 256));
+      ->capture_default_str()->check(in_range(0.0, 0.19));
+  wex->add_option("--voxels", wx.options.voxels_per_crossing, "voxels per crossing along x and y")->capture_default_str()->check(whole_in_range(4, 256));
   wex->add_option("--jitter", wx.options.jitter, "random displacement of the emitted yarn along each axis (a share of the spacing) and spread of the yarns' radii (a share of the radius)")
-      ->capture_default_str()->check(CLI::Range(0.0, 0.19));
-  wex->add_option("--plies", wx.options.plies, "plies twisted into each yarn")->capture_default_str()->check(CLI::Range(1, 8));
-  wex->add_option("--twist", wx.options.twist, "length of one ply turn [mm] (default: 8 radii)")->check(CLI::Range(0.01, 1000.0));
+      ->capture_default_str()->check(in_range(0.0, 0.19));
+  wex->add_option("--plies", wx.options.plies, "plies twisted into each yarn")->capture_default_str()->check(whole_in_range(1, 8));
+  wex->add_option("--twist", wx.options.twist, "length of one ply turn [mm] (default: 8 radii)")->check(in_range(0.01, 1000.0));
   wex->add_option("--migration", wx.options.migration, "how far fibres migrate across a ply over one ply turn, a share of its radius")
-      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+      ->capture_default_str()->check(in_range(0.0, 1.0));
   wex->add_option("--seed", wx.options.seed, "random seed of the jitter and the fibres")->capture_default_str();
-  wex->add_option("--max-steps", wx.options.max_steps, "relaxation steps at most")->capture_default_str()->check(CLI::Range(0L, 1000000L));
+  wex->add_option("--max-steps", wx.options.max_steps, "relaxation steps at most")->capture_default_str()->check(whole_in_range(0, 1000000));
 
   auto* wvol = app.add_subcommand("weave-volume", "synthesize the volumetric appearance of a woven design from exemplars and render it (Zhao 2012 §5; docs/woven.md)");
   WeaveVolumeArgs wv;
@@ -487,16 +511,16 @@ int run_command_line(int argc, char** argv) {
   wvol->add_option("--weft-colors", wv.weft_colors, "weft colours #rrggbb, cycled over the wefts")->capture_default_str();
   wvol->add_flag("--compare-truth", wv.compare_truth, "also relax the design directly as one patch (square, up to 32 x 32 crossings) and report how far "
                                                     "the synthesized volume is from it; with --png, both rendered side by side (PNG-truth.png)");
-  wvol->add_option("--edge-rank", wv.edge_rank, "edge fixing's rank r (§5.5); 0: no edge fixing")->capture_default_str()->check(CLI::Range(0, 256));
+  wvol->add_option("--edge-rank", wv.edge_rank, "edge fixing's rank r (§5.5); 0: no edge fixing")->capture_default_str()->check(whole_in_range(0, 256));
   bool wv_fixed = false;
   wvol->add_flag("--no-randomize", wv_fixed, "keep the dynamic program's blocks (no random shifts by the exemplars' symmetries)")
       ->each([&](const std::string&) { wv.synthesis.randomize = false; });
   wvol->add_option("--seed", wv.synthesis.seed, "random seed of the randomization")->capture_default_str();
-  wvol->add_option("--width", wv.render.width, "picture width [pixels]")->capture_default_str()->check(CLI::Range(8, 8192));
-  wvol->add_option("--height", wv.render.height, "picture height [pixels]")->capture_default_str()->check(CLI::Range(8, 8192));
-  wvol->add_option("--samples", wv.render.samples, "paths per pixel")->capture_default_str()->check(CLI::Range(1, 65536));
-  wvol->add_option("--field", wv.render.field, "the picture's width on the fabric [mm] (default: the whole fabric)")->check(CLI::Range(0.01, 1e6));
-  wvol->add_option("--tilt", wv.render.tilt, "the view's angle from straight down [degrees]")->capture_default_str()->check(CLI::Range(0.0, 80.0));
+  wvol->add_option("--width", wv.render.width, "picture width [pixels]")->capture_default_str()->check(whole_in_range(8, 8192));
+  wvol->add_option("--height", wv.render.height, "picture height [pixels]")->capture_default_str()->check(whole_in_range(8, 8192));
+  wvol->add_option("--samples", wv.render.samples, "paths per pixel")->capture_default_str()->check(whole_in_range(1, 65536));
+  wvol->add_option("--field", wv.render.field, "the picture's width on the fabric [mm] (default: the whole fabric)")->check(in_range(0.01, 1e6));
+  wvol->add_option("--tilt", wv.render.tilt, "the view's angle from straight down [degrees]")->capture_default_str()->check(in_range(0.0, 80.0));
 
   // skein audit
   auto* audit = app.add_subcommand("audit", "what changed between two states of one yarn: crossings and linking numbers");
@@ -509,7 +533,7 @@ int run_command_line(int argc, char** argv) {
   double audit_deviation = 0.1;
   audit->add_option("--deviation", audit_deviation, "the linking numbers' polylines stay this close to the curves, × r (refined further where curves come close); "
                                                    "the crossing test is exact and has no deviation")
-      ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
+      ->capture_default_str()->check(in_range(1e-4, 1.0));
 
   // skein run
   auto* run_cmd = app.add_subcommand("run", "run a job file: the whole pipeline from a mesh to relaxed yarn, unattended (docs/jobs.md)");

@@ -42,11 +42,11 @@ std::vector<json> list_of(const Keys& k, const std::string& key) {
   return {v};
 }
 
-std::vector<double> numbers(const Keys& k, const std::string& key, double low, double high) {
+std::vector<double> numbers(const Keys& k, const std::string& key, double low, double high, const std::string& as = "") {
   std::vector<double> out;
   for (const json& v : list_of(k, key)) {
     if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < low || v.get<double>() > high)
-      k.fail(k.name(key), "expected numbers in [" + number_text(low) + ", " + number_text(high) + "], found " + v.dump());
+      k.fail(k.name(key), "expected numbers in [" + number_text(low) + ", " + number_text(high) + "]" + (as.empty() ? "" : " (as " + as + ")") + ", found " + v.dump());
     out.push_back(v.get<double>());
   }
   if (out.empty()) out.push_back(1);
@@ -247,7 +247,9 @@ Sweep parse_sweep(const std::string& text, const fs::path& file) {
     gauges.push_back(g.get<std::string>());
   }
   if (gauges.empty()) gauges.push_back("");
-  const auto gammas = numbers(k, "gamma", 0.25, 4), take_ups = numbers(k, "take_up", 0.1, 2);
+  const auto& take_up = workflow::yarn_option("take_up");  // the schema's range, as --take-up's
+  const auto gammas = numbers(k, "gamma", relax::kMinGamma, relax::kMaxGamma, "--gamma"),
+             take_ups = numbers(k, "take_up", take_up.low, take_up.high, take_up.flag());
   if (k.has("relax")) s.relax_arguments = relax_arguments(Keys(k.at("relax"), "relax", file));
   s.threads = static_cast<int>(k.integer("threads", 1, 1, 1024));
   s.pictures = k.flag("pictures", true);

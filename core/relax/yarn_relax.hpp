@@ -39,6 +39,8 @@ struct YarnParams {
 /// stretch and length unchanged. Relaxed at gamma r and scaled by 1/gamma, the yarn is that of the physical
 /// model with 1/gamma of the yarn length: a knob for take-up that keeps the spline segments.
 YarnParams radius_scaled(const YarnParams& params, double gamma);
+/// The radius scales `skein pattern --gamma` and a sweep's `gamma` take: a quarter to four times the yarn's length.
+inline constexpr double kMinGamma = 0.25, kMaxGamma = 4.0;
 
 /// The energy of the yarn at `points` (intrinsic terms of every segment and contact between the given
 /// pairs) with its gradient; with `velocities`, also the damping forces (eqs. 11–12) into `damping`.

@@ -846,6 +846,18 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("take-up of s:up: the part after ':' must be vertical or horizontal"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "u.bcc"));
+  // Every flag with a range speaks as the schema's do (not CLI11's "Value abc not in range 64 to 4096"), and the
+  // active set's settings are refused without it rather than ignored.
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"pattern " + kPatterns + "/seed.knit --png-size abc --png p.png", "--png-size: expected a whole number, found abc"},
+           {"pattern " + kPatterns + "/seed.knit --png-size 10 --png p.png", "--png-size: must be in [64, 4096], found 10"},
+           {"pattern " + kPatterns + "/seed.knit --relax --gamma 9", "--gamma: must be in [0.25, 4], found 9"},
+           {"relax-yarn none.bcc --sleep-force 1", "--sleep-force requires --active-set"},
+           {"relax-yarn none.bcc --active-set --wake-move -3", "--wake-move: expected a positive number, found -3"}}) {
+    r = run_skein(args + " -o " + (dir / "x.bcc").string());
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
   // Not a schema option, but no longer taken silently as the default either.
   r = run_skein("relax-yarn none.bcc --yarn-radius -1 -o " + (dir / "x.bcc").string());
   EXPECT_EQ(r.status, 2);

@@ -50,7 +50,7 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "yarns": ["chunky-ish"]})", "key 'yarns'"},
            {R"({"patterns": [")" + stock + R"("], "yarns": [-1]})", "key 'yarns': expected a yarn weight"},
            {R"({"patterns": [")" + stock + R"("], "gauges": ["many"]})", "key 'gauges'"},
-           {R"({"patterns": [")" + stock + R"("], "take_up": [0]})", "key 'take_up': expected numbers in [0.1, 2]"},
+           {R"({"patterns": [")" + stock + R"("], "take_up": [0]})", "key 'take_up': expected numbers in [0.1, 10] (as --take-up)"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
            {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
