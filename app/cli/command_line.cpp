@@ -1284,32 +1284,18 @@ int run_command_line(int argc, char** argv) {
       if (before.curve_start != after.curve_start || before.closed != after.closed)
         throw Error(audit_after, "", "holds other curves than " + audit_before + " (curve count, point counts or closed flags differ)");
       const auto ids = audit_ids.empty() ? std::vector<workflow::PointId>{} : workflow::read_point_ids(audit_ids, before);
-      const auto system = relax::make_yarn_system(before);
-      Eigen::Matrix3Xd q1(3, system.num_points());
-      for (int p = 0; p < system.num_points(); ++p) q1.col(p) = after.points[p];
-      double largest = 0, squares = 0;
-      for (int p = 0; p < system.num_points(); ++p) {
-        const double d = (q1.col(p) - system.points.col(p)).norm();
-        largest = std::max(largest, d);
-        squares += d * d;
-      }
-      const double rms = std::sqrt(squares / system.num_points()), r = system.radius;
-      const auto crossing_list = relax::TopologyAuditor(system).crossings(system.points, q1);
-      const long crossings = static_cast<long>(crossing_list.size());
-      const long unresolved = std::count_if(crossing_list.begin(), crossing_list.end(), [](const auto& c) { return !c.resolved; });
-      const auto links_before = relax::linking_numbers(before, audit_deviation), links_after = relax::linking_numbers(after, audit_deviation);
-      std::map<std::pair<int, int>, long> lk0, lk1;
-      for (const auto& l : links_before) lk0[{l.a, l.b}] = l.number;
-      for (const auto& l : links_after) lk1[{l.a, l.b}] = l.number;
-      std::cout << "curves: " << system.num_curves() << " (" << std::count(before.closed.begin(), before.closed.end(), 1) << " closed), control points: "
-                << system.num_points() << "\nlargest control-point move: " << largest << " mm (" << largest / r
-                << " r)\nRMS control-point move: " << rms << " mm (" << rms / r << " r)\n"
-                << "centreline crossings on the straight path between the two states (exact test, Bezier hulls): " << crossings;
-      if (unresolved > 0)
-        std::cout << " (" << unresolved << " of them pairs the test could not settle in " << relax::kMaxAuditPieces
+      const auto a = relax::audit_states(before, after, audit_deviation);
+      const double r = before.radius;
+      std::cout << "curves: " << a.curves << " (" << a.closed_curves << " closed), control points: " << a.points
+                << "\nlargest control-point move: " << a.largest_move << " mm (" << a.largest_move / r << " r)\nRMS control-point move: " << a.rms_move
+                << " mm (" << a.rms_move / r << " r)\n"
+                << "centreline crossings on the straight path between the two states (exact test, Bezier hulls): " << a.crossings.size();
+      if (a.unresolved > 0)
+        std::cout << " (" << a.unresolved << " of them pairs the test could not settle in " << relax::kMaxAuditPieces
                   << " pieces, centrelines nearly touching along a stretch: counted as crossings)";
       std::cout << "\n";
-      // With the ids: a segment's stitch is its first point's, else its second's (a point of no face has none).
+      // A segment's points, and with the ids its stitch: its first point's, else its second's (a point of no face has none).
+      const auto system = relax::make_yarn_system(before);
       const auto stitch_of = [&](int segment) -> const workflow::PointId* {
         for (int k : {1, 2})
           if (const int p = system.segment_points[segment][k]; ids[p].face >= 0) return &ids[p];
@@ -1317,18 +1303,17 @@ int run_command_line(int argc, char** argv) {
       };
       const auto describe = [&](int segment) {
         const workflow::PointId* id = ids.empty() ? nullptr : stitch_of(segment);
-        return id ? " [face " + std::to_string(id->face) + ", row " + std::to_string(id->row) + ", " + id->type + "]" : std::string();
+        return " (points " + std::to_string(system.segment_points[segment][1]) + "-" + std::to_string(system.segment_points[segment][2]) + ")" +
+               (id ? " [face " + std::to_string(id->face) + ", row " + std::to_string(id->row) + ", " + id->type + "]" : std::string());
       };
-      for (size_t i = 0; i < std::min<size_t>(crossing_list.size(), 20); ++i) {
-        const auto& c = crossing_list[i];
-        std::cout << "  segments " << c.segment_a << " (points " << system.segment_points[c.segment_a][1] << "-" << system.segment_points[c.segment_a][2]
-                  << ")" << describe(c.segment_a) << " and " << c.segment_b << " (points " << system.segment_points[c.segment_b][1] << "-"
-                  << system.segment_points[c.segment_b][2] << ")" << describe(c.segment_b) << " near (" << c.where.x() << ", " << c.where.y() << ", "
-                  << c.where.z() << ")\n";
+      for (size_t i = 0; i < std::min<size_t>(a.crossings.size(), 20); ++i) {
+        const auto& c = a.crossings[i];
+        std::cout << "  segments " << c.segment_a << describe(c.segment_a) << " and " << c.segment_b << describe(c.segment_b) << " near (" << c.where.x()
+                  << ", " << c.where.y() << ", " << c.where.z() << ")\n";
       }
       if (!ids.empty()) {
         std::set<int> faces, rows;
-        for (const auto& c : crossing_list)
+        for (const auto& c : a.crossings)
           for (int segment : {c.segment_a, c.segment_b})
             if (const auto* id = stitch_of(segment)) faces.insert(id->face), rows.insert(id->row);
         std::cout << "stitches in the crossings: " << faces.size() << " (in " << rows.size() << " rows)";
@@ -1336,17 +1321,12 @@ int run_command_line(int argc, char** argv) {
         for (int f : faces) std::cout << (shown++ == 0 ? ": faces " : ", ") << f;
         std::cout << "\n";
       }
-      long changed = 0;
-      std::set<std::pair<int, int>> keys;
-      for (const auto& [k, v] : lk0) keys.insert(k);
-      for (const auto& [k, v] : lk1) keys.insert(k);
-      for (const auto& k : keys) {
-        const long a = lk0.count(k) ? lk0[k] : 0, b = lk1.count(k) ? lk1[k] : 0;
-        if (a == b) continue;
-        if (++changed <= 20) std::cout << "linking number of closed curves " << k.first << " and " << k.second << ": " << a << " -> " << b << "\n";
+      for (size_t i = 0; i < std::min<size_t>(a.linking_changes.size(), 20); ++i) {
+        const auto& l = a.linking_changes[i];
+        std::cout << "linking number of closed curves " << l.a << " and " << l.b << ": " << l.before << " -> " << l.after << "\n";
       }
-      std::cout << "linking numbers changed: " << changed << " (of " << keys.size() << " pairs of closed curves that come near)\n";
-      return crossings == 0 && changed == 0 ? 0 : 1;
+      std::cout << "linking numbers changed: " << a.linking_changes.size() << " (of " << a.linked_pairs << " pairs of closed curves that come near)\n";
+      return a.unchanged() ? 0 : 1;
     }
     if (*devices) {
       const auto q = cuda::query_devices();

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <tuple>
@@ -462,6 +463,34 @@ std::vector<Linking> linking_numbers(const relax::YarnCurves& yarn, double devia
     }
     out[k] = {closed[i], closed[j], polyline_linking_number(a.line, b.line)};
   }
+  return out;
+}
+
+StateAudit audit_states(const relax::YarnCurves& before, const relax::YarnCurves& after, double deviation) {
+  if (before.curve_start != after.curve_start || before.closed != after.closed)
+    throw Error("", "", "the two states hold other curves (curve count, point counts or closed flags differ)");
+  const auto system = make_yarn_system(before);
+  StateAudit out;
+  out.curves = system.num_curves();
+  out.closed_curves = static_cast<int>(std::count(before.closed.begin(), before.closed.end(), 1));
+  out.points = system.num_points();
+  Eigen::Matrix3Xd moved(3, system.num_points());
+  double squares = 0;
+  for (int p = 0; p < system.num_points(); ++p) {
+    moved.col(p) = after.points[p];
+    const double d = (moved.col(p) - system.points.col(p)).norm();
+    out.largest_move = std::max(out.largest_move, d);
+    squares += d * d;
+  }
+  out.rms_move = std::sqrt(squares / system.num_points());
+  out.crossings = TopologyAuditor(system).crossings(system.points, moved);
+  out.unresolved = std::count_if(out.crossings.begin(), out.crossings.end(), [](const auto& c) { return !c.resolved; });
+  std::map<std::pair<int, int>, std::array<long, 2>> links;  // per pair: before, after (0 where a state has none)
+  for (const auto& l : linking_numbers(before, deviation)) links[{l.a, l.b}][0] = l.number;
+  for (const auto& l : linking_numbers(after, deviation)) links[{l.a, l.b}][1] = l.number;
+  out.linked_pairs = static_cast<long>(links.size());
+  for (const auto& [pair, numbers] : links)
+    if (numbers[0] != numbers[1]) out.linking_changes.push_back({pair.first, pair.second, numbers[0], numbers[1]});
   return out;
 }
 

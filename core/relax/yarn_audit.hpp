@@ -84,4 +84,23 @@ struct Linking {
 inline constexpr int kMaxLinkingSamples = 1024;
 std::vector<Linking> linking_numbers(const relax::YarnCurves& yarn, double deviation = 0.1);
 
+/// What changed between two states of one yarn (`skein audit`, the app's audit): how far its control points
+/// moved, the centreline crossings on the straight path from one to the other (TopologyAuditor) and the closed
+/// curves whose linking number changed (linking_numbers at `deviation`). Unchanged topology: no crossing, no change.
+struct StateAudit {
+  int curves = 0, closed_curves = 0, points = 0;
+  double largest_move = 0, rms_move = 0;  ///< [mm]
+  std::vector<TopologyAuditor::Crossing> crossings;
+  long unresolved = 0;  ///< crossings the test could not settle in kMaxAuditPieces pieces (counted as crossings)
+  struct LinkChange {
+    int a = 0, b = 0;          ///< closed curves
+    long before = 0, after = 0;
+  };
+  std::vector<LinkChange> linking_changes;  ///< by curve pair
+  long linked_pairs = 0;                    ///< pairs of closed curves that come near in either state
+  bool unchanged() const { return crossings.empty() && linking_changes.empty(); }
+};
+/// Throws skein::Error when `after` holds other curves than `before` (counts, sizes or closed flags).
+StateAudit audit_states(const relax::YarnCurves& before, const relax::YarnCurves& after, double deviation = 0.1);
+
 }  // namespace skein::relax

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -193,4 +194,29 @@ TEST(ExactAudit, LinkingByCrossingsEqualsTheGaussSumSignIncluded) {
     for (auto& p : b) p += Vector3d(5, 0, 0);
     EXPECT_EQ(linking_number_by_crossings(a, b), 0);
   }
+}
+
+TEST(StateAudit, ARingPulledOffAnotherChangesItsLinkingAndCrossesAndAnUnmovedYarnChangesNothing) {
+  const auto before = skein::testing::linked_rings(0.5, 24);
+  auto after = before;
+  for (int p = before.curve_start[1]; p < before.curve_start[2]; ++p) after.points[p].x() += 8;  // ring B off ring A
+  const auto pulled = audit_states(before, after);
+  EXPECT_EQ(pulled.curves, 2);
+  EXPECT_EQ(pulled.closed_curves, 2);
+  EXPECT_EQ(pulled.points, 48);
+  EXPECT_NEAR(pulled.largest_move, 8, 1e-12);
+  EXPECT_NEAR(pulled.rms_move, std::sqrt(0.5 * 64), 1e-12);  // half the points moved 8 mm
+  EXPECT_FALSE(pulled.crossings.empty());
+  EXPECT_EQ(pulled.unresolved, 0);
+  ASSERT_EQ(pulled.linking_changes.size(), 1u);
+  EXPECT_EQ(std::abs(pulled.linking_changes[0].before), 1);
+  EXPECT_EQ(pulled.linking_changes[0].after, 0);
+  EXPECT_FALSE(pulled.unchanged());
+  const auto still = audit_states(before, before);
+  EXPECT_TRUE(still.unchanged());
+  EXPECT_EQ(still.largest_move, 0);
+  EXPECT_EQ(still.linked_pairs, 1);
+  auto fewer = before;
+  fewer.closed[1] = 0;
+  EXPECT_NE(skein::testing::error_of([&] { audit_states(before, fewer); }).find("hold other curves"), std::string::npos);
 }
