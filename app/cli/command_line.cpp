@@ -64,6 +64,7 @@ CLI::Validator number_check(bool whole, std::function<bool(double)> allows, std:
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         const std::string expected = whole ? "expected a whole number, found " : "expected a number, found ";
+        if (text.empty()) return expected + "nothing";
         double x = 0;
         try {
           size_t used = 0;
@@ -73,8 +74,9 @@ CLI::Validator number_check(bool whole, std::function<bool(double)> allows, std:
           return expected + text;
         }
         if (!std::isfinite(x) || (whole && x != std::floor(x))) return expected + text;
-        if (allows(x)) return {};
-        return "must be in " + shown + ", found " + text + (why.empty() ? "" : " (" + why + ")");
+        if (!allows(x)) return "must be in " + shown + ", found " + text + (why.empty() ? "" : " (" + why + ")");
+        if (whole) text = std::to_string(static_cast<long long>(x));  // 1e3 and 3.0 as the integer the option stores
+        return {};
       },
       range);
 }
@@ -89,7 +91,7 @@ CLI::Validator in_range(double low, double high, const std::string& unit = "") {
   return number_check(false, [=](double x) { return x >= low && x <= high; }, "[" + text(low) + ", " + text(high) + "]", unit);
 }
 
-/// A whole number in [low, high].
+/// A whole number in [low, high]; give it to `transform`, not `check`, so that 1e3 and 3.0 reach the option as 1000 and 3.
 CLI::Validator whole_in_range(long low, long high, const std::string& unit = "") {
   return number_check(true, [=](double x) { return x >= low && x <= high; }, "[" + std::to_string(low) + ", " + std::to_string(high) + "]", unit);
 }
@@ -102,7 +104,9 @@ CLI::Option* add_yarn_option(CLI::App* app, const std::string& key, T& target, c
   const std::string unit = spec.unit.empty() ? "" : " [" + spec.unit + "]";
   auto* option = app->add_option(spec.flag(), target, prefix + spec.help + unit + suffix);
   if (spec.kind == workflow::YarnOption::Kind::Choice) return option->check(CLI::IsMember(spec.choices))->capture_default_str();
-  option->check(number_check(spec.kind == workflow::YarnOption::Kind::Integer, [&spec](double x) { return spec.allows(x); }, spec.range(), spec.unit, spec.help));
+  const bool whole = spec.kind == workflow::YarnOption::Kind::Integer;
+  const auto check = number_check(whole, [&spec](double x) { return spec.allows(x); }, spec.range(), spec.unit, spec.help);
+  whole ? option->transform(check) : option->check(check);  // a transform may hand 1e3 on as 1000
   return option->capture_default_str();
 }
 
@@ -330,8 +334,11 @@ int run_command_line(int argc, char** argv) {
   ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
   auto* active_set = ry->add_flag("--active-set", ry_options.active_set.enabled,
                                   "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
-  ry->add_option("--sleep-force", ry_options.active_set.sleep_force, "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N")
-      ->check(positive())->needs(active_set)->capture_default_str();
+  const double wake_force = relax::ActiveSetOptions{}.wake_force;  // a sleeping point wakes above it: sleep below it
+  ry->add_option("--sleep-force", ry_options.active_set.sleep_force,
+                 "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N (under the wake force, " + std::to_string(static_cast<int>(wake_force)) + ")")
+      ->check(number_check(false, [wake_force](double x) { return x > 0 && x < wake_force; }, "(0, " + std::to_string(static_cast<int>(wake_force)) + ")"))
+      ->needs(active_set)->capture_default_str();
   ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
       ->check(positive())->needs(active_set)->capture_default_str();
   add_yarn_option(ry, "contact_spacing", ry_options.sampling.spacing);
@@ -434,7 +441,7 @@ int run_command_line(int argc, char** argv) {
   int pat_panel = 900;
   pat->add_option("--views", pat_views, "flat (front and back), front, or three (front, back, three-quarter), for --png and --preview-png")
       ->check(CLI::IsMember({"flat", "front", "three"}))->capture_default_str();
-  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->check(whole_in_range(64, 4096))->capture_default_str();
+  pat->add_option("--png-size", pat_panel, "pixels per view of --png")->transform(whole_in_range(64, 4096))->capture_default_str();
   std::string pat_onto, pat_rows;
   int pat_face = 0;
   auto* onto_opt = pat->add_option("--onto", pat_onto, "tile the pattern onto this project's stitch mesh instead (-o writes the project)");
@@ -450,7 +457,7 @@ int run_command_line(int argc, char** argv) {
   smock->add_option("--style", sm.style, "an .svg drawing's style: italian (default), canadian or english");
   smock->add_option("--svg-grid", sm.svg.grid, "an .svg drawing's grid spacing in its own units (default: the smallest step between stitch ends)")
       ->check(in_range(1e-9, 1e9));
-  smock->add_option("--svg-margin", sm.svg.margin, "grid squares of fabric around an .svg drawing's stitches")->capture_default_str()->check(whole_in_range(0, 1000));
+  smock->add_option("--svg-margin", sm.svg.margin, "grid squares of fabric around an .svg drawing's stitches")->capture_default_str()->transform(whole_in_range(0, 1000));
   smock->add_option("--svg-spacing", sm.svg.spacing, "mm between grid points of an .svg drawing's pattern")->capture_default_str()->check(in_range(0.1, 1000.0));
   smock->add_option("--write-smock", sm.write_smock, "the pattern as .smock text (what an .svg drawing was read as)");
   smock->add_option("-o,--output", sm.output, "the embedding as JSON: grid points flat and gathered, each stitch's lifted midpoint (eqs. 6-8)");
@@ -471,7 +478,7 @@ int run_command_line(int argc, char** argv) {
   bool smock_raw = false;
   smock->add_flag("--no-settle", smock_raw, "leave the pleat points where Algorithm 1 stops (the paper's output; the fabric may be stretched there)")
       ->each([&](const std::string&) { sm.options.settle = false; });
-  smock->add_option("--max-iterations", sm.options.max_iterations, "stop after this many iterations")->capture_default_str()->check(whole_in_range(0, 1000000000));
+  smock->add_option("--max-iterations", sm.options.max_iterations, "stop after this many iterations")->capture_default_str()->transform(whole_in_range(0, 1000000000));
 
   // skein weave-exemplar and weave-volume (issue 29)
   auto* wex = app.add_subcommand("weave-exemplar", "relax small woven patches and voxelize them as exemplars for weave-volume (Zhao 2012 §4, §6; docs/woven.md)");
@@ -479,20 +486,20 @@ int run_command_line(int argc, char** argv) {
   wex->add_option("PATTERN", wx.patterns, "woven patterns (.weave or .wif), one exemplar each")->required();
   wex->add_option("-o,--output", wx.output, "folder for the exemplars (one .vdb per pattern file, named as it)")->required();
   wex->add_option("--report", wx.report, "report (JSON; - for stdout)");
-  wex->add_option("--crossings", wx.options.crossings, "crossings along each side of an exemplar")->capture_default_str()->check(whole_in_range(2, 64));
+  wex->add_option("--crossings", wx.options.crossings, "crossings along each side of an exemplar")->capture_default_str()->transform(whole_in_range(2, 64));
   wex->add_option("--radius", wx.options.radius, "yarn radius [mm]")->capture_default_str()->check(in_range(0.01, 10.0));
   wex->add_option("--spacing", wx.options.spacing, "crossing spacing [mm] (default: 3 radii)")->check(in_range(0.02, 100.0));
   wex->add_option("--tension", wx.options.tension, "the loom's tension: rest lengths are the emitted lengths times 1 - tension")
       ->capture_default_str()->check(in_range(0.0, 0.19));
-  wex->add_option("--voxels", wx.options.voxels_per_crossing, "voxels per crossing along x and y")->capture_default_str()->check(whole_in_range(4, 256));
+  wex->add_option("--voxels", wx.options.voxels_per_crossing, "voxels per crossing along x and y")->capture_default_str()->transform(whole_in_range(4, 256));
   wex->add_option("--jitter", wx.options.jitter, "random displacement of the emitted yarn along each axis (a share of the spacing) and spread of the yarns' radii (a share of the radius)")
       ->capture_default_str()->check(in_range(0.0, 0.19));
-  wex->add_option("--plies", wx.options.plies, "plies twisted into each yarn")->capture_default_str()->check(whole_in_range(1, 8));
+  wex->add_option("--plies", wx.options.plies, "plies twisted into each yarn")->capture_default_str()->transform(whole_in_range(1, 8));
   wex->add_option("--twist", wx.options.twist, "length of one ply turn [mm] (default: 8 radii)")->check(in_range(0.01, 1000.0));
   wex->add_option("--migration", wx.options.migration, "how far fibres migrate across a ply over one ply turn, a share of its radius")
       ->capture_default_str()->check(in_range(0.0, 1.0));
   wex->add_option("--seed", wx.options.seed, "random seed of the jitter and the fibres")->capture_default_str();
-  wex->add_option("--max-steps", wx.options.max_steps, "relaxation steps at most")->capture_default_str()->check(whole_in_range(0, 1000000));
+  wex->add_option("--max-steps", wx.options.max_steps, "relaxation steps at most")->capture_default_str()->transform(whole_in_range(0, 1000000));
 
   auto* wvol = app.add_subcommand("weave-volume", "synthesize the volumetric appearance of a woven design from exemplars and render it (Zhao 2012 §5; docs/woven.md)");
   WeaveVolumeArgs wv;
@@ -511,14 +518,14 @@ int run_command_line(int argc, char** argv) {
   wvol->add_option("--weft-colors", wv.weft_colors, "weft colours #rrggbb, cycled over the wefts")->capture_default_str();
   wvol->add_flag("--compare-truth", wv.compare_truth, "also relax the design directly as one patch (square, up to 32 x 32 crossings) and report how far "
                                                     "the synthesized volume is from it; with --png, both rendered side by side (PNG-truth.png)");
-  wvol->add_option("--edge-rank", wv.edge_rank, "edge fixing's rank r (§5.5); 0: no edge fixing")->capture_default_str()->check(whole_in_range(0, 256));
+  wvol->add_option("--edge-rank", wv.edge_rank, "edge fixing's rank r (§5.5); 0: no edge fixing")->capture_default_str()->transform(whole_in_range(0, 256));
   bool wv_fixed = false;
   wvol->add_flag("--no-randomize", wv_fixed, "keep the dynamic program's blocks (no random shifts by the exemplars' symmetries)")
       ->each([&](const std::string&) { wv.synthesis.randomize = false; });
   wvol->add_option("--seed", wv.synthesis.seed, "random seed of the randomization")->capture_default_str();
-  wvol->add_option("--width", wv.render.width, "picture width [pixels]")->capture_default_str()->check(whole_in_range(8, 8192));
-  wvol->add_option("--height", wv.render.height, "picture height [pixels]")->capture_default_str()->check(whole_in_range(8, 8192));
-  wvol->add_option("--samples", wv.render.samples, "paths per pixel")->capture_default_str()->check(whole_in_range(1, 65536));
+  wvol->add_option("--width", wv.render.width, "picture width [pixels]")->capture_default_str()->transform(whole_in_range(8, 8192));
+  wvol->add_option("--height", wv.render.height, "picture height [pixels]")->capture_default_str()->transform(whole_in_range(8, 8192));
+  wvol->add_option("--samples", wv.render.samples, "paths per pixel")->capture_default_str()->transform(whole_in_range(1, 65536));
   wvol->add_option("--field", wv.render.field, "the picture's width on the fabric [mm] (default: the whole fabric)")->check(in_range(0.01, 1e6));
   wvol->add_option("--tilt", wv.render.tilt, "the view's angle from straight down [degrees]")->capture_default_str()->check(in_range(0.0, 80.0));
 

@@ -225,7 +225,8 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
     const auto [name, value] = std::pair{text.substr(0, text.find('=')), text.find('=') == std::string::npos ? "" : text.substr(text.find('=') + 1)};
     char* end = nullptr;
     const double f = std::strtod(value.c_str(), &end);
-    if (name.empty() || value.empty() || *end != 0) throw Error("", option, "expected TYPE=FACTOR (e.g. s=0.8), found '" + text + "'");
+    if (name.empty() || value.empty() || *end != 0 || !std::isfinite(f))
+      throw Error("", option, "expected TYPE=FACTOR or TYPE:vertical=FACTOR (e.g. s=0.8, s:vertical=0.3), found '" + text + "'");
     const auto& take_up = workflow::yarn_option("take_up");  // a factor of the same kind as --take-up, in its range
     if (!take_up.allows(f)) throw Error("", option + " '" + text + "'", "the factor must be in " + take_up.range() + ", as --take-up's");
     out[name] = f;

@@ -86,19 +86,31 @@ YarnSystem make_yarn_system(const relax::YarnCurves& curves, double take_up, con
     if (!(factor > 0) || !std::isfinite(factor)) throw Error("", "take-up of " + key, "must be positive, found " + std::to_string(factor));
     const auto colon = key.find(':');
     const std::string name = key.substr(0, colon), part = colon == std::string::npos ? "" : key.substr(colon + 1);
-    if (!part.empty() && part != "vertical" && part != "horizontal")
+    if (name.empty()) throw Error("", "take-up of " + key, "expected a stitch type before ':' (s:vertical)");
+    if (colon != std::string::npos && part != "vertical" && part != "horizontal")
       throw Error("", "take-up of " + key, "the part after ':' must be vertical or horizontal (Leaf 2018 §6.1), found '" + part + "'");
+    if (curves.type_names.empty())
+      throw Error("", "take-up of " + key, "this yarn knows no stitch types (yarn read from a file keeps none); relax it from its project or pattern");
+    if (!part.empty() && curves.point_vertical.size() != curves.points.size())
+      throw Error("", "take-up of " + key, "this yarn does not say which of its material is vertical (yarn read from a file keeps no stitch pieces); "
+                                          "relax it from its project or pattern, or give " + name + "=F for all of the stitch's yarn");
     const auto it = std::find(curves.type_names.begin(), curves.type_names.end(), name);
     if (it == curves.type_names.end()) {
       std::string known;
       for (const auto& t : curves.type_names) known += (known.empty() ? "" : " ") + t;
       throw Error("", "take-up of " + key, "the yarn has no stitch of that type; it has: " + known);
     }
-    if (!part.empty() && curves.point_vertical.size() != curves.points.size())
-      throw Error("", "take-up of " + key, "this yarn does not say which of its material is vertical (yarn read from a file keeps no stitch pieces); "
-                                          "relax it from its project or pattern, or give " + name + "=F for all of the stitch's yarn");
+    const int type = static_cast<int>(it - curves.type_names.begin());
+    if (!part.empty()) {  // the stitch must have that part somewhere, or the factor would be taken and do nothing
+      bool found = false;
+      for (size_t p = 0; p < curves.points.size() && !found; ++p)
+        found = curves.point_type[p] == type && (curves.point_vertical[p] != 0) == (part == "vertical");
+      if (!found)
+        throw Error("", "take-up of " + key, "stitch " + name + " has no " + part + " yarn here (" +
+                                                (part == "vertical" ? "only slipped stitches and cables carry a loop up through their row" : "a cable face holds only its crossing strands") + ")");
+    }
     auto& table = part.empty() ? type_take_up : part == "vertical" ? vertical_take_up : horizontal_take_up;
-    table[it - curves.type_names.begin()] = factor;
+    table[type] = factor;
   }
   // A segment's factor is its piece's: the piece that wrote the segment's owner point.
   const auto factor_at = [&](int point) {

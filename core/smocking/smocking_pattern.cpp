@@ -7,7 +7,7 @@
 
 #include "common/error.hpp"
 #include "common/input_file.hpp"
-#include "stitchmesh/text.hpp"
+#include "common/text.hpp"
 
 namespace skein::smocking {
 namespace {
@@ -15,16 +15,13 @@ namespace {
 constexpr int kMaxGridPoints = 250'000;  // 500 x 500: Algorithm 1 steps every point thousands of times
 constexpr int kMaxStitches = 1'000'000;
 
-using Word = mesh::Token;
+using Word = Token;
 
 class Reader {
 public:
   Reader(std::string source) : m_source(std::move(source)) {}
-  std::string at(int line, int column = 0) const {
-    return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : "");
-  }
-  [[noreturn]] void fail(int line, const Word& w, const std::string& rule) const { throw Error(m_source, at(line, w.column), rule); }
-  [[noreturn]] void fail(int line, const std::string& rule) const { throw Error(m_source, at(line), rule); }
+  [[noreturn]] void fail(int line, const Word& w, const std::string& rule) const { throw Error(m_source, text_place(line, w.column), rule); }
+  [[noreturn]] void fail(int line, const std::string& rule) const { throw Error(m_source, text_place(line), rule); }
 
   int integer(int line, const Word& w, std::string_view text, const char* what) const {
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
@@ -132,19 +129,20 @@ const char* style_name(Style style) {
 SmockingPattern parse_smocking_pattern(const std::string& text, const std::string& source) {
   const Reader reader(source);
   SmockingPattern p;
-  std::istringstream in(text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text);  // a UTF-8 byte order mark is not text
-  std::string raw;
+  std::istringstream in(text);
+  LineReader lines(in, source);
   int line = 0, format_line = 0, grid_line = 0;
   long stitches = 0;
   const auto add_stitches = [&](long n, int at) {
     stitches += n;
     if (stitches > kMaxStitches) reader.fail(at, "more than " + std::to_string(kMaxStitches) + " stitches in all");
   };
-  while (std::getline(in, raw)) {
-    ++line;
-    if (raw.rfind("# name:", 0) == 0) p.name = mesh::trim(raw.substr(7));
-    if (raw.rfind("# source:", 0) == 0) p.note = mesh::trim(raw.substr(9));
-    const auto words = mesh::split(raw.substr(0, raw.find('#')));
+  while (lines.next()) {
+    line = lines.number();
+    const std::string& raw = lines.line();
+    if (raw.rfind("# name:", 0) == 0) p.name = trim(raw.substr(7));
+    if (raw.rfind("# source:", 0) == 0) p.note = trim(raw.substr(9));
+    const auto words = split(raw.substr(0, raw.find('#')));
     if (words.empty()) continue;
     const std::string& key = words[0].text;
     if (format_line == 0) {

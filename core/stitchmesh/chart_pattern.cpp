@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "stitchmesh/written_pattern.hpp"
+#include "common/text.hpp"
 #include "stitchmesh/stitch_types.hpp"
-#include "stitchmesh/text.hpp"
+#include "stitchmesh/written_pattern.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -134,10 +134,11 @@ ChartReading read_chart(const std::string& text, const std::string& source) {
   std::vector<ChartRow> drawn;  // top line first
   std::vector<std::string> comments;  // "# name:" and "# source:" lines, for the written reader
   int line_no = 0;
-  const auto at = [](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
-  for (std::string raw; std::getline(in, raw);) {
-    ++line_no;
-    if (raw.size() > kLongestLine) throw Error(source, at(line_no, 0), "is longer than " + std::to_string(kLongestLine) + " characters");
+  const auto at = text_place;
+  LineReader reader(in, source, kLongestLine);
+  while (reader.next()) {
+    line_no = reader.number();
+    const std::string& raw = reader.line();
     const auto hash = comment_start(raw);
     if (hash != std::string::npos) {
       const std::string c = trim(raw.substr(hash + 1));
@@ -275,7 +276,7 @@ Pattern parse_chart_pattern(const std::string& text, const std::string& source) 
   const ChartReading reading = read_chart(text, source);
   const auto& made = reading.made;
   const int rows = static_cast<int>(made.size());
-  const auto at = [](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
+  const auto at = text_place;
   // The written instructions, read as written; their errors placed back on the chart.
   const int first_row_line = static_cast<int>(reading.comments.size()) + 1;
   try {

@@ -7,8 +7,8 @@
 #include <regex>
 
 #include "common/error.hpp"
+#include "common/text.hpp"
 #include "stitchmesh/stitch_types.hpp"
-#include "stitchmesh/text.hpp"
 
 namespace skein::mesh {
 namespace {

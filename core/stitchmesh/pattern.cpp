@@ -10,10 +10,10 @@
 
 #include "common/error.hpp"
 #include "common/input_file.hpp"
+#include "common/text.hpp"
 #include "stitchmesh/chart_pattern.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/stitch_types.hpp"
-#include "stitchmesh/text.hpp"
 #include "stitchmesh/wif_pattern.hpp"
 #include "stitchmesh/written_pattern.hpp"
 
@@ -71,16 +71,16 @@ Pattern parse_pattern(const std::string& text, const std::string& source) {
   Pattern p;
   p.name = std::filesystem::path(source).stem().string();
   std::istringstream in(text);
-  std::string raw;
+  LineReader reader(in, source);
   int line_no = 0;
   bool have_format = false;
   std::vector<Row> lines;         // top line first, as written
   std::vector<Row> colour_lines;  // after `colours`: the colour of each stitch, laid out as the rows
   bool in_colours = false;
-  const auto at = [&](int line, int column) { return "line " + std::to_string(line) + (column > 0 ? ", column " + std::to_string(column) : ""); };
-  while (std::getline(in, raw)) {
-    ++line_no;
-    std::string line = raw;
+  const auto at = text_place;
+  while (reader.next()) {
+    line_no = reader.number();
+    std::string line = reader.line();
     if (const auto hash = comment_start(line); hash != std::string::npos) {
       const std::string comment = trim(line.substr(hash + 1));
       for (const auto& [key, field] : {std::pair{"name:", &p.name}, std::pair{"source:", &p.note}})

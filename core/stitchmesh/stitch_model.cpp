@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "common/input_file.hpp"
+#include "common/text.hpp"
 #include "skein/config.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
@@ -60,13 +61,11 @@ StitchModel parse_stitch_model(const std::string& text, const std::string& file)
   StitchModel m;
   bool have_name = false, have_shape = false, notes_done = false;
   std::istringstream in(text);
-  std::string raw;
-  int line_no = 0;
-  const auto fail = [&](const std::string& rule) { throw Error(file, "line " + std::to_string(line_no), rule); };
+  LineReader reader(in, file);
+  const auto fail = [&](const std::string& rule) { reader.fail(rule); };
   std::map<std::string, int> used;  // crossing name → uses
-  while (std::getline(in, raw)) {
-    ++line_no;
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+  while (reader.next()) {
+    const std::string& raw = reader.line();
     if (!raw.empty() && raw[0] == '#') {
       if (!notes_done) m.note += (m.note.empty() ? "" : "\n") + raw.substr(raw.size() > 1 && raw[1] == ' ' ? 2 : 1);
       continue;
@@ -129,7 +128,6 @@ StitchModel parse_stitch_model(const std::string& text, const std::string& file)
       piece.points.push_back(p);
     }
   }
-  line_no = 0;
   const auto fail_model = [&](const std::string& rule) { throw Error(file, "", rule); };
   if (!have_name) fail_model("no 'stitch NAME' line");
   if (!have_shape) fail_model("no 'shape BOTTOM TOP' line");

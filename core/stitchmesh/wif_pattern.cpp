@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "stitchmesh/text.hpp"
+#include "common/text.hpp"
 
 namespace skein::mesh {
 namespace {
@@ -22,7 +22,7 @@ constexpr int kMostThreads = 10000;  // threads or picks of a draft: far past a 
 constexpr int kLongestRepeat = 256;  // threads or picks of the repeat skein relaxes
 constexpr long kMostCells = 4'000'000;  // threads x picks of the drawdown
 
-std::string line_at(int line) { return "line " + std::to_string(line); }
+std::string line_at(int line) { return text_place(line); }
 
 /// One `key=value` line of a section.
 struct Entry {
@@ -51,12 +51,11 @@ struct Sections {
 Sections split_sections(const std::string& text, const std::string& source) {
   Sections s;
   std::istringstream in(text);
-  std::string raw, current;
-  int line_no = 0;
-  while (std::getline(in, raw)) {
-    ++line_no;
-    if (line_no == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw = raw.substr(3);  // a UTF-8 byte-order mark
-    const std::string line = trim(raw);
+  std::string current;
+  LineReader reader(in, source);
+  while (reader.next()) {
+    const int line_no = reader.number();
+    const std::string line = trim(reader.line());
     if (line.empty() || line[0] == ';') continue;
     if (line[0] == '[') {
       if (line.back() != ']') throw Error(source, line_at(line_no), "a section header is [NAME], found '" + line + "'");

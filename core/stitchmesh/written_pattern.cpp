@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "stitchmesh/text.hpp"
+#include "common/text.hpp"
 #include "stitchmesh/stitch_types.hpp"
 
 namespace skein::mesh {
@@ -761,12 +761,11 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   bool started = false;
   std::string description;
   int multiple_line = 0;  // the description's line that says "Multiple of N sts plus M", or 0
-  for (std::string raw; std::getline(in, raw);) {
-    ++line_no;
-    // std::regex recurses per character: a bound on the line keeps a hostile file from the stack's end.
-    if (raw.size() > kLongestLine)
-      throw Error(source, "line " + std::to_string(line_no), "is longer than " + std::to_string(kLongestLine) + " characters");
-    std::string line = raw;
+  // std::regex recurses per character: a bound on the line keeps a hostile file from the stack's end.
+  LineReader reader(in, source, kLongestLine);
+  while (reader.next()) {
+    line_no = reader.number();
+    std::string line = reader.line();
     if (const auto hash = comment_start(line); hash != std::string::npos) {
       const std::string comment = line.substr(hash + 1);
       const auto b = comment.find_first_not_of(" \t");

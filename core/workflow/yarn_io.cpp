@@ -18,6 +18,7 @@
 #include "common/error.hpp"
 #include "common/gltf_mesh.hpp"
 #include "common/input_file.hpp"
+#include "common/text.hpp"
 #include "relax/segment_distance.hpp"
 
 namespace skein::workflow {
@@ -321,16 +322,16 @@ std::vector<PointId> read_point_ids(const std::filesystem::path& path, const rel
   check_input_file(path, (yarn.points.size() + 1) * 4200);  // the header and one line of at most 4096 a point
   std::ifstream in(path);
   if (!in) throw Error(path.string(), "", "cannot be read");
-  const auto fail = [&](int line, const std::string& rule) { throw Error(path.string(), "line " + std::to_string(line), rule); };
+  const auto fail = [&](int line, const std::string& rule) { throw Error(path.string(), text_place(line), rule); };
   const int n = static_cast<int>(yarn.points.size());
   std::vector<PointId> ids;
+  LineReader reader(in, path.string(), 4096);
   std::string line;
   int line_no = 0;
   const auto next = [&] {
-    if (!std::getline(in, line)) return false;
-    ++line_no;
-    if (line.size() > 4096) fail(line_no, "is longer than 4096 characters");
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!reader.next()) return false;
+    line = reader.line();
+    line_no = reader.number();
     return true;
   };
   if (!next() || line != "point,curve,face,row,type") fail(1, "expected the header 'point,curve,face,row,type'");

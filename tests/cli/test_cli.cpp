@@ -858,6 +858,10 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
   }
+  // A whole number may be written as one: 1e1 steps are 10 steps.
+  r = run_skein("pattern " + kPatterns + "/seed.knit --relax --no-audit --max-steps 1e1 -o " + (dir / "x.bcc").string() + " --report " + (dir / "r.json").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "r.json"))["steps"], 10);
   // Not a schema option, but no longer taken silently as the default either.
   r = run_skein("relax-yarn none.bcc --yarn-radius -1 -o " + (dir / "x.bcc").string());
   EXPECT_EQ(r.status, 2);

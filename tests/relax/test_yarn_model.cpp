@@ -263,6 +263,9 @@ TEST(YarnSystem, TakeUpOfAStitchsVerticalOrHorizontalMaterialScalesOnlyThatPart)
   EXPECT_EQ(vertical_segments, 2 * 2 * 2);
   EXPECT_EQ(horizontal_segments, 2 * 3);
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s:up", 0.5}}); }).find("must be vertical or horizontal"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"s:", 0.5}}); }).find("must be vertical or horizontal"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{":vertical", 0.5}}); }).find("expected a stitch type"), std::string::npos);
+  EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(yarn, 1.0, {{"k:vertical", 0.5}}); }).find("stitch k has no vertical yarn"), std::string::npos);
   auto read_back = yarn;  // yarn from a .bcc knows its stitch types at most, not its pieces
   read_back.point_vertical.clear();
   EXPECT_NE(skein::testing::error_of([&] { make_yarn_system(read_back, 1.0, {{"s:vertical", 0.5}}); }).find("does not say which of its material is vertical"),
