@@ -236,9 +236,7 @@ struct RelaxYarnCommand final : Subcommand {
       const auto previous = workflow::read_bcc(ry_warm);
       if (previous.curve_start != previous_emitted.curve_start)
         throw Error(ry_warm, "", "holds other curves than the yarn of " + ry_warm_project + " (curve or point counts differ): it was not relaxed from it");
-      Eigen::Matrix3Xd previous_points(3, previous.points.size());
-      for (size_t p = 0; p < previous.points.size(); ++p) previous_points.col(p) = previous.points[p];
-      const auto splice = workflow::splice_previous(yarn, previous_emitted, previous_points);
+      const auto splice = workflow::splice_previous(yarn, previous_emitted, previous);
       spdlog::info("warm start from {}: {} of {} control points emitted as before, {} new", ry_warm, yarn.points.size() - splice.changed(),
                    yarn.points.size(), splice.changed());
       workflow::LocalRelaxReport local;
@@ -280,15 +278,7 @@ struct RelaxYarnCommand final : Subcommand {
           workflow::stand_in_preview(*project.stitch, yarn, library, ry_options, ry_stand_in_options, stand_in);
       // What the preview is worth: its energy as the relaxer measures it, and the auditor on the straight path from the emission.
       const auto system = relax::make_yarn_system(yarn, ry_take_up, parse_take_up("--take-up-stitch", ry_take_up_stitch), ry_options.sampling);
-      auto probe = ry_options;
-      probe.max_steps = 0;
-      probe.audit = false;
-      probe.checkpoint.clear();
-      probe.checkpoint_every = 0;
-      probe.checkpoint_minutes = 0;
-      auto state = relax::initial_state(system, probe);
-      state.points = points;
-      const double energy = relax::make_cpu_yarn_relaxer(system, targets, probe)->run(state).energy;
+      const double energy = relax::relaxer_energy(system, targets, ry_options, points);
       const long crossings = static_cast<long>(relax::TopologyAuditor(system).crossings(system.points, points).size());
       const auto out = relax::with_points(yarn, points);
       write_yarn(out, ry_out, true);

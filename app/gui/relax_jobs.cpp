@@ -126,9 +126,7 @@ void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const rel
   emission.yarn_radius = m_yarn.radius;
   const auto previous_emitted = mesh::emit_yarn(previous_stitch, mesh::StitchLibrary::bundled(), emission);
   if (previous_emitted.curve_start != previous_relaxed.curve_start) return;  // not that mesh's yarn: relax it all
-  Eigen::Matrix3Xd points(3, previous_relaxed.points.size());
-  for (size_t p = 0; p < previous_relaxed.points.size(); ++p) points.col(p) = previous_relaxed.points[p];
-  m_splice = workflow::splice_previous(m_yarn, previous_emitted, points);
+  m_splice = workflow::splice_previous(m_yarn, previous_emitted, previous_relaxed);
   m_points = m_splice->points;
 }
 

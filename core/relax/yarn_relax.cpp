@@ -812,4 +812,16 @@ std::unique_ptr<YarnRelaxer> make_cpu_yarn_relaxer(const YarnSystem& system, con
   return std::make_unique<CpuYarnRelaxer>(system, targets, options);
 }
 
+double relaxer_energy(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options, const Eigen::Matrix3Xd& points) {
+  auto probe = options;
+  probe.max_steps = 0;
+  probe.audit = false;
+  probe.checkpoint.clear();
+  probe.checkpoint_every = 0;
+  probe.checkpoint_minutes = 0;
+  auto state = initial_state(system, probe);
+  state.points = points;
+  return make_cpu_yarn_relaxer(system, targets, probe)->run(state).energy;
+}
+
 }  // namespace skein::relax

@@ -289,4 +289,8 @@ public:
 /// The CPU relaxer (OpenMP), the reference for every other backend. `targets` may be empty (bare yarn).
 std::unique_ptr<YarnRelaxer> make_cpu_yarn_relaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options);
 
+/// The energy the CPU relaxer measures at `points` (its first evaluation: no step, audit or checkpoint), with the
+/// same terms, contacts and shape targets as a relaxation: what a preview or a stand-in is worth against one.
+double relaxer_energy(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options, const Eigen::Matrix3Xd& points);
+
 }  // namespace skein::relax

@@ -38,6 +38,14 @@ Splice splice_previous(const relax::YarnCurves& emitted, const relax::YarnCurves
   return out;
 }
 
+Splice splice_previous(const relax::YarnCurves& emitted, const relax::YarnCurves& previous_emitted, const relax::YarnCurves& previous_relaxed) {
+  if (previous_relaxed.curve_start != previous_emitted.curve_start)
+    throw Error("", "warm start", "the previous relaxed yarn holds other curves than the previous project's (curve or point counts differ): it was not relaxed from it");
+  Eigen::Matrix3Xd points(3, previous_relaxed.points.size());
+  for (size_t p = 0; p < previous_relaxed.points.size(); ++p) points.col(p) = previous_relaxed.points[p];
+  return splice_previous(emitted, previous_emitted, points);
+}
+
 std::vector<int> owner_faces(const relax::YarnCurves& yarn) {
   std::vector<int> owner(yarn.point_face.begin(), yarn.point_face.end());
   for (int c = 0; c < yarn.curves(); ++c) {

@@ -25,6 +25,9 @@ struct Splice {
 /// `previous_relaxed` holds the relaxed positions of `previous_emitted`'s points (the same curves); throws
 /// skein::Error when it does not.
 Splice splice_previous(const relax::YarnCurves& emitted, const relax::YarnCurves& previous_emitted, const Eigen::Matrix3Xd& previous_relaxed);
+/// The same from the previous relaxed yarn as curves (a .bcc read back, the app's last result); throws skein::Error
+/// when they are not the curves of `previous_emitted` (curve or point counts differ: not relaxed from it).
+Splice splice_previous(const relax::YarnCurves& emitted, const relax::YarnCurves& previous_emitted, const relax::YarnCurves& previous_relaxed);
 
 /// Per point, its stitch: its own face, or for points of no face (cables, turns, borders) the face of the
 /// nearest point along its yarn that has one (-1 when none does).

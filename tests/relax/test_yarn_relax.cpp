@@ -282,6 +282,17 @@ TEST(YarnRelax, SqueezedLinkedRingsStayLinkedWithTheGuard) {
   EXPECT_LT((out.points[0] - out.points[12]).norm(), 4.0);
 }
 
+TEST(YarnRelax, TheRelaxersEnergyAtAStateIsTheEnergyItsRunEndsWithThere) {
+  // relaxer_energy prices a state (a stand-in, a preview) as a relaxation does: at a relaxation's last state
+  // it gives that run's energy, and the emitted state costs more.
+  const auto yarn = skein::testing::linked_rings();
+  const auto system = make_yarn_system(yarn, 0.3);
+  const auto options = squeeze_options();
+  const auto run = relaxed(system, options);
+  EXPECT_NEAR(relaxer_energy(system, {}, options, run.state.points), run.report.energy, 1e-9 * std::abs(run.report.energy));
+  EXPECT_GT(relaxer_energy(system, {}, options, system.points), run.report.energy);
+}
+
 TEST(JamWatch, AJamIsStepsOfHeldPointsOverWhichTheEnergyHardlyFalls) {
   JamWatch watch(10, 1e-4);
   double energy = 1000;

@@ -5,6 +5,7 @@
 #include "relax/yarn_relax.hpp"
 #include "stitchmesh/edits.hpp"
 #include "workflow/yarn_local.hpp"
+#include "testing.hpp"
 #include "yarn_fixtures.hpp"
 
 using namespace skein;
@@ -46,6 +47,13 @@ TEST(YarnLocal, ANoOpEditChangesNothing) {
   EXPECT_EQ(report.steps, 0);
   EXPECT_EQ(report.stopped_by, StopReason::NothingChanged);
   EXPECT_TRUE(points == p.relaxed);  // bit for bit
+  // The same splice from the relaxed yarn as curves (a .bcc read back); other curves are refused.
+  const auto from_curves = splice_previous(p.k.yarn, p.k.yarn, with_points(p.k.yarn, p.relaxed));
+  EXPECT_TRUE(from_curves.points == splice.points);
+  auto other = with_points(p.k.yarn, p.relaxed);
+  other.curve_start.back() -= 1;
+  other.points.pop_back();
+  EXPECT_NE(skein::testing::error_of([&] { splice_previous(p.k.yarn, p.k.yarn, other); }).find("holds other curves"), std::string::npos);
 }
 
 TEST(YarnLocal, AnEditRelaxesItsRingsAndLeavesTheRestBitIdentical) {
