@@ -275,3 +275,11 @@ TEST(Pattern, CablesBecomeCableMarksAboveTheirStitches) {
   EXPECT_NE(error_in("format knit\ncable4x1\n").find("a cable is cableAxB"), std::string::npos);
   EXPECT_NE(error_in("format knit\ncable2x2*\n").find("a cable is cableAxB"), std::string::npos);
 }
+
+TEST(Pattern, AFileSavedWithAByteOrderMarkOrWindowsLineEndsReadsTheSame) {
+  const auto plain = mesh::parse_pattern("format knit\nk p\np k\n", "rib.knit");
+  for (const std::string text : {"\xEF\xBB\xBF" "format knit\nk p\np k\n", "format knit\r\nk p\r\np k\r\n"}) {
+    const auto read = mesh::parse_pattern(text, "rib.knit");
+    EXPECT_EQ(read.rows, plain.rows);
+  }
+}
