@@ -175,18 +175,6 @@ TEST(YarnModel, PatchTrackingGradientMatchesFiniteDifferencesOnBothPhases) {
   }
 }
 
-TEST(YarnContacts, GridFindsTheSamePairsAsBruteForce) {
-  const auto yarn = skein::testing::yarn_of(skein::testing::small_piece(models::swatch(), "rib"));
-  const auto system = make_yarn_system(yarn);
-  for (double margin : {0.0, 0.5, 2.0}) {
-    const auto grid = find_contact_pairs(system, system.points, margin);
-    const auto brute = find_contact_pairs_brute_force(system, system.points, margin);
-    EXPECT_GT(grid.pairs(), 0);
-    EXPECT_EQ(grid.start, brute.start);
-    EXPECT_EQ(grid.partner, brute.partner);
-  }
-}
-
 TEST(YarnSystem, SegmentsNeighboursAndSampleCounts) {
   const auto yarn = skein::testing::linked_rings(0.5, 24);
   const auto system = make_yarn_system(yarn);
