@@ -47,9 +47,7 @@ struct SmockCommand final : Subcommand {
 
   bool chosen() const override { return smock->parsed(); }
 
-  int run(const Context&) override {
-    return run_smock(sm);
-  }
+  int run(const Context&) override { return run_smock(sm); }
 };
 
 }  // namespace

@@ -68,12 +68,12 @@ struct WeaveCommand final : Subcommand {
   bool chosen() const override { return wex->parsed() || wvol->parsed(); }
 
   int run(const Context&) override {
-    if (*wex) return weave_exemplar(wx), 0;
-    if (*wvol) {
-      if (!wv.pattern.empty() && !wv.picture.empty()) throw Error("", "weave-volume", "give a woven PATTERN or --picture, not both");
-      weave_volume(wv);
+    if (wex->parsed()) {
+      weave_exemplar(wx);
       return 0;
     }
+    if (!wv.pattern.empty() && !wv.picture.empty()) throw Error("", "weave-volume", "give a woven PATTERN or --picture, not both");
+    weave_volume(wv);
     return 0;
   }
 };
