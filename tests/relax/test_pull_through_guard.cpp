@@ -11,14 +11,7 @@
 using namespace skein;
 using namespace skein::relax;
 using Eigen::Vector3d;
-
-namespace {
-
-std::vector<Vector3d> curve_points(const relax::YarnCurves& y, int c) {
-  return {y.points.begin() + y.curve_start[c], y.points.begin() + y.curve_start[c + 1]};
-}
-
-}  // namespace
+using skein::testing::curve_points;
 
 TEST(PullThroughGuard, StopsARingDraggedThroughAnother) {
   const auto yarn = skein::testing::linked_rings();

@@ -18,23 +18,10 @@
 using namespace skein;
 using namespace skein::relax;
 using Eigen::Vector3d;
+using skein::testing::relaxed;
+using skein::testing::curve_points;
 
 namespace {
-
-std::vector<Vector3d> curve_points(const relax::YarnCurves& y, int c) {
-  return {y.points.begin() + y.curve_start[c], y.points.begin() + y.curve_start[c + 1]};
-}
-
-struct Run {
-  YarnState state;
-  YarnRelaxReport report;
-};
-
-Run relaxed(const YarnSystem& system, const YarnRelaxOptions& options, const ShapeTargets& targets = {}) {
-  Run run{initial_state(system, options), {}};
-  run.report = make_cpu_yarn_relaxer(system, targets, options)->run(run.state);
-  return run;
-}
 
 /// Two linked rings whose yarn is given only 30% of its length: they pull tight against each other.
 YarnRelaxOptions squeeze_options() {

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "garments.hpp"
+#include "relax/yarn_relax.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/edits.hpp"
 #include "stitchmesh/labeling.hpp"
@@ -27,6 +28,22 @@ inline void add_ring(relax::YarnCurves& yarn, const Eigen::Vector3d& centre, con
   }
   yarn.curve_start.push_back(static_cast<int>(yarn.points.size()));
   yarn.closed.push_back(1);
+}
+
+/// The control points of curve `c`.
+inline std::vector<Eigen::Vector3d> curve_points(const relax::YarnCurves& y, int c) {
+  return {y.points.begin() + y.curve_start[c], y.points.begin() + y.curve_start[c + 1]};
+}
+
+/// A CPU relaxation from the system's own points: its last state and its report.
+struct RelaxRun {
+  relax::YarnState state;
+  relax::YarnRelaxReport report;
+};
+inline RelaxRun relaxed(const relax::YarnSystem& system, const relax::YarnRelaxOptions& options, const relax::ShapeTargets& targets = {}) {
+  RelaxRun run{relax::initial_state(system, options), {}};
+  run.report = relax::make_cpu_yarn_relaxer(system, targets, options)->run(run.state);
+  return run;
 }
 
 /// Two rings through each other (a Hopf link), each of radius 3 mm, yarn radius r.

@@ -13,21 +13,7 @@ using namespace skein;
 using namespace skein::relax;
 using namespace skein::workflow;
 using Eigen::Vector3d;
-
-namespace {
-
-struct Run {
-  YarnState state;
-  YarnRelaxReport report;
-};
-
-Run relaxed(const YarnSystem& system, const YarnRelaxOptions& options, const ShapeTargets& targets = {}) {
-  Run run{initial_state(system, options), {}};
-  run.report = make_cpu_yarn_relaxer(system, targets, options)->run(run.state);
-  return run;
-}
-
-}  // namespace
+using skein::testing::relaxed;
 
 namespace {
 /// RMS distance [r] between the periodic patch's real points and the matching points of the centre repeat of
