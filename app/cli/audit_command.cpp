@@ -10,7 +10,6 @@
 #include "common/error.hpp"
 #include "cuda/device.hpp"
 #include "relax/yarn_audit.hpp"
-#include "relax/yarn_relax.hpp"
 #include "workflow/yarn_io.hpp"
 
 namespace skein::cli {
@@ -51,15 +50,14 @@ struct AuditCommand final : Subcommand {
                 << " pieces, centrelines nearly touching along a stretch: counted as crossings)";
     std::cout << "\n";
     // A segment's points, and with the ids its stitch: its first point's, else its second's (a point of no face has none).
-    const auto system = relax::make_yarn_system(before);
     const auto stitch_of = [&](int segment) -> const workflow::PointId* {
-      for (int k : {1, 2})
-        if (const int p = system.segment_points[segment][k]; ids[p].face >= 0) return &ids[p];
+      for (const int p : a.segment_ends[segment])
+        if (ids[p].face >= 0) return &ids[p];
       return nullptr;
     };
     const auto describe = [&](int segment) {
       const workflow::PointId* id = ids.empty() ? nullptr : stitch_of(segment);
-      return " (points " + std::to_string(system.segment_points[segment][1]) + "-" + std::to_string(system.segment_points[segment][2]) + ")" +
+      return " (points " + std::to_string(a.segment_ends[segment][0]) + "-" + std::to_string(a.segment_ends[segment][1]) + ")" +
              (id ? " [face " + std::to_string(id->face) + ", row " + std::to_string(id->row) + ", " + id->type + "]" : std::string());
     };
     for (size_t i = 0; i < std::min<size_t>(a.crossings.size(), 20); ++i) {

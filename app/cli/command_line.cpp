@@ -30,6 +30,7 @@ int run_command_line(int argc, char** argv) {
   spdlog::set_pattern("[%H:%M:%S.%e] %^%l%$ %v");
   spdlog::set_level(context.quiet ? spdlog::level::warn : spdlog::level::info);
   try {
+    check_companions(app);
     for (const auto& s : subcommands)
       if (s->chosen()) return s->run(context);
   } catch (const Error& e) {

@@ -20,7 +20,7 @@ struct DevicesCommand final : Subcommand {
 
   bool chosen() const override { return devices->parsed(); }
 
-  int run(const Context& context) override {
+  int run(const Context&) override {
     const auto q = cuda::query_devices();
     std::cout << cuda::describe(q) << "\n";
     return 0;

@@ -34,7 +34,7 @@ struct RenderCommand final : Subcommand {
 
   bool chosen() const override { return render_cmd->parsed(); }
 
-  int run(const Context& context) override {
+  int run(const Context&) override {
     check_writable(render_out);
     if (render_yarn || is_bcc(render_in)) {
       render_yarn_tubes(yarn_of(render_in, render_radius, ""), render_out,

@@ -1,7 +1,10 @@
 #include "subcommand.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+
+#include "common/error.hpp"
 
 namespace skein::cli {
 
@@ -103,5 +106,28 @@ void add_fabric(CLI::App* cmd, FabricChoice& fabric, const char* yarn_sets, bool
 }
 
 bool size_given(const CLI::App* cmd) { return cmd->count("--stitch-size") + cmd->count("--stitch-height") > 0; }
+
+void check_companions(const CLI::App& app) {
+  for (const CLI::App* command : app.get_subcommands()) {
+    for (const CLI::Option* option : command->get_options()) {
+      const std::string& help = option->get_description();
+      if (option->count() == 0 || help.rfind("with --", 0) != 0) continue;
+      // "with --a: ...", "with --a or --b: ...": the flags named before the colon (or the first comma or space after one).
+      const std::string names = help.substr(5, help.find_first_of(":;,(", 5) - 5);
+      std::vector<std::string> companions;
+      for (size_t at = names.find("--"); at != std::string::npos; at = names.find("--", at + 2))
+        companions.push_back(names.substr(at, names.find(' ', at) - at));
+      const bool given = std::any_of(companions.begin(), companions.end(), [&](const std::string& flag) {
+        const CLI::Option* companion = command->get_option_no_throw(flag);
+        return companion == nullptr || companion->count() > 0;  // a name that is not this command's flag: not checked here
+      });
+      if (!given) {
+        std::string wanted = companions.front();
+        for (size_t i = 1; i < companions.size(); ++i) wanted += " or " + companions[i];
+        throw Error("", option->get_name(), "goes with " + wanted + "; without it, it would change nothing");
+      }
+    }
+  }
+}
 
 }  // namespace skein::cli

@@ -44,6 +44,9 @@ CLI::Validator positive();
 void add_fabric(CLI::App* cmd, FabricChoice& fabric, const char* yarn_sets, bool gauge);
 /// Whether --stitch-size or --stitch-height was given to `cmd`.
 bool size_given(const CLI::App* cmd);
+/// A flag whose help begins "with --other: ..." (or "with --a or --b: ...") given without its companion: a skein::Error
+/// naming both, rather than a flag that silently changes nothing.
+void check_companions(const CLI::App& app);
 
 /// A yarn option's flag as the schema declares it (relax/yarn_options.hpp): its help, unit and range, the same as
 /// in jobs, sweeps, projects and the app. `prefix` says when it applies ("with --relax: "), `suffix` adds what only this command does.

@@ -2,6 +2,9 @@
 
 #include <tuple>
 
+#include <spdlog/spdlog.h>
+
+#include "common/error.hpp"
 #include "cuda/yarn_relaxer.hpp"
 #include "relax/yarn_system.hpp"
 #include "stitchmesh/stitch_model.hpp"
@@ -125,9 +128,12 @@ void YarnRelaxJob::warm_start(const mesh::StitchMesh& previous_stitch, const rel
   mesh::EmitOptions emission;
   emission.yarn_radius = m_yarn.radius;
   const auto previous_emitted = mesh::emit_yarn(previous_stitch, mesh::StitchLibrary::bundled(), emission);
-  if (previous_emitted.curve_start != previous_relaxed.curve_start) return;  // not that mesh's yarn: relax it all
-  m_splice = workflow::splice_previous(m_yarn, previous_emitted, previous_relaxed);
-  m_points = m_splice->points;
+  try {
+    m_splice = workflow::splice_previous(m_yarn, previous_emitted, previous_relaxed);
+    m_points = m_splice->points;
+  } catch (const Error& e) {
+    spdlog::warn("{}; relaxing the whole yarn from its emission", e.what());  // not that mesh's yarn
+  }
 }
 
 std::optional<workflow::LocalRelaxReport> YarnRelaxJob::local() const {

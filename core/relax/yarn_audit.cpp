@@ -484,6 +484,8 @@ StateAudit audit_states(const relax::YarnCurves& before, const relax::YarnCurves
   }
   out.rms_move = std::sqrt(squares / system.num_points());
   out.crossings = TopologyAuditor(system).crossings(system.points, moved);
+  out.segment_ends.reserve(system.segment_points.size());
+  for (const auto& stencil : system.segment_points) out.segment_ends.push_back({stencil[1], stencil[2]});
   out.unresolved = std::count_if(out.crossings.begin(), out.crossings.end(), [](const auto& c) { return !c.resolved; });
   std::map<std::pair<int, int>, std::array<long, 2>> links;  // per pair: before, after (0 where a state has none)
   for (const auto& l : linking_numbers(before, deviation)) links[{l.a, l.b}][0] = l.number;

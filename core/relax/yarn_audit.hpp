@@ -91,6 +91,7 @@ struct StateAudit {
   int curves = 0, closed_curves = 0, points = 0;
   double largest_move = 0, rms_move = 0;  ///< [mm]
   std::vector<TopologyAuditor::Crossing> crossings;
+  std::vector<std::array<int, 2>> segment_ends;  ///< per segment: the two control points it runs between (naming a crossing)
   long unresolved = 0;  ///< crossings the test could not settle in kMaxAuditPieces pieces (counted as crossings)
   struct LinkChange {
     int a = 0, b = 0;          ///< closed curves
