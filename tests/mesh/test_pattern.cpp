@@ -149,9 +149,11 @@ TEST(Pattern, TilingInColourBringsThePatternsPaletteIntoTheMeshs) {
   const auto stripes = parse_pattern("format knit\ncolour MC: cream\ncolour CC: navy\nk\nk\ncolours\nCC\nMC\n", "s.knit");
   const auto striped = tile_pattern(piece, faces, stripes, origin);
   ASSERT_EQ(striped.palette, stripes.palette);
-  for (int f : faces)
-    if (piece.faces[f].bottom == 1 && piece.faces[f].top() == 1)
+  for (int f : faces) {
+    if (piece.faces[f].bottom == 1 && piece.faces[f].top() == 1) {
       EXPECT_EQ(striped.faces[f].colour, ((grid.level[f] - grid.level[origin]) % 2 + 2) % 2 == 0 ? 0 : 1) << "face " << f;
+    }
+  }
   // A second pattern's colours join by name: its CC is the mesh's CC, its new colour is added after it.
   const auto dots = parse_pattern("format knit\ncolour CC: red\ncolour D: gold\nk k\ncolours\nCC D\n", "d.knit");
   const auto dotted = tile_pattern(striped, faces, dots, origin);

@@ -24,7 +24,7 @@ mesh::Project full_project() {
   p.stitch = mesh::mark_cable(s, mesh::top_edge_path(s, 3, 2, 4), 1, -1);
   p.settings = {{"yarn.tolerance", "0.005"}, {"yarn.method", "euler"}};
   // Yarn in two colours: a run of faces in the second (issue 26), the description's comment mark made harmless.
-  p.stitch->palette = {{"MC", "cream", {240 / 255.0, 230 / 255.0, 207 / 255.0}}, {"CC", "navy #1", {31 / 255.0, 42 / 255.0, 68 / 255.0}}};
+  p.stitch->palette = {{"MC", "cream", {240 / 255.0, 230 / 255.0, 207 / 255.0}, ""}, {"CC", "navy #1", {31 / 255.0, 42 / 255.0, 68 / 255.0}, ""}};
   for (int f = 10; f < 30; ++f) p.stitch->faces[f].colour = 1;
   return p;
 }

@@ -1,3 +1,4 @@
+// Written instructions as stitch dictionaries and yarn companies write them, read into patterns and written back.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,42 +12,11 @@
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/written_pattern.hpp"
 #include "stitchmesh/yarn_emission.hpp"
+#include "pattern_fixtures.hpp"
 #include "testing.hpp"
 
 using namespace skein;
-using skein::testing::error_of;
-
-namespace {
-/// The two repeats make the same fabric: tiled to a common size, one equals the other shifted (rows and
-/// columns, cyclically), cables included. For patterns of one-loop stitches.
-bool same_fabric(const mesh::Pattern& a, const mesh::Pattern& b) {
-  const int h = std::lcm(a.height(), b.height()), w = std::lcm(a.width(), b.width());
-  const auto cell = [](const mesh::Pattern& p, int r, int c) {
-    const int rr = r % p.height(), cc = c % p.width();
-    for (const auto& cable : p.cables)
-      if (cable.row == rr && cc >= cable.first_loop && cc < cable.first_loop + cable.over + cable.under)
-        return "cable" + std::to_string(cable.over) + "x" + std::to_string(cable.under) + (cable.order > 0 ? "+" : "-") + std::to_string(cc - cable.first_loop);
-    return p.rows[rr][cc];
-  };
-  for (int dr = 0; dr < h; ++dr)
-    for (int dc = 0; dc < w; ++dc) {
-      bool same = true;
-      for (int r = 0; r < h && same; ++r)
-        for (int c = 0; c < w && same; ++c) same = cell(a, r, c) == cell(b, (r + dr) % h, (c + dc) % w);
-      if (same) return true;
-    }
-  return false;
-}
-std::string rows_text(const mesh::Pattern& p) {  // bottom row first
-  std::string out;
-  for (const auto& row : p.rows) {
-    for (size_t i = 0; i < row.size(); ++i) out += (i ? " " : "") + row[i];
-    out += " / ";
-  }
-  return out;
-}
-mesh::Pattern bundled(const std::string& name) { return mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/" + name + ".knit"); }
-}  // namespace
+using namespace skein::testing;
 
 TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -78,7 +48,7 @@ TEST(WrittenPattern, StitchDictionaryTextGivesTheBundledFabrics) {
   };
   for (const auto& [name, text] : cases) {
     // Twisted rib is written with skein's k+1; a crossed knit (k1 tbl) is `x`: compare it as the same fabric.
-    auto expected = bundled(name);
+    auto expected = bundled_knit(name);
     if (name == "twisted-rib") expected = mesh::parse_pattern("format knit\nx p\n", "x.knit");
     const auto written = mesh::parse_pattern(text, name + ".txt");
     EXPECT_TRUE(same_fabric(written, expected)) << name << ": " << text << "read as " << rows_text(written) << " cables " << written.cables.size();
@@ -239,151 +209,11 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_TRUE(mesh::is_written_pattern("format written\n"));
 }
 
-TEST(ChartPattern, ChartsReadAsTheWrittenRowsAKnitterReadsOffThem) {
-  // Right-side rows right to left, wrong-side rows left to right with each symbol worked as its wrong-side stitch.
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"stockinette", "format chart\n. . . .\n. . . .\n"},
-      {"garter", "format chart\n- - - -\n. . . .\n"},
-      {"rib-2x2", "format chart round\n. . - -\n"},
-      {"rib-2x2", "format chart\n..--\n..--\n"},
-      {"seed", "format chart\n- .  2\n. -  1\n"},
-      {"honeycomb", "format chart round\n. . . .\n. . v .\n. . . .\nv . . .\n"},
-      {"cable-4", "format chart\nkey C C4B\n- - . . . . - -\n- - . . . . - -\n- - . . . . - -\n- - C C C C - -\n"},
-      {"twisted-rib", "format chart round\nt -\n"},
-  };
-  for (const auto& [name, text] : cases) {
-    auto expected = bundled(name);
-    if (name == "twisted-rib") expected = mesh::parse_pattern("format knit\nx p\n", "x.knit");
-    const auto chart = mesh::parse_pattern(text, name + ".txt");
-    EXPECT_TRUE(same_fabric(chart, expected)) << name << ": " << text << "read as " << rows_text(chart);
-  }
-  // Charts as printed, in Unicode: a bullet for purl, a ring for a yarn-over, a key of its own in UTF-8.
-  EXPECT_EQ(mesh::parse_pattern("format chart\n\u2022 . \u2022 .\n. \u2022 . \u2022\n", "s.txt").rows,
-            mesh::parse_pattern("format chart\n- . - .\n. - . -\n", "s.txt").rows);
-  EXPECT_EQ(mesh::parse_pattern("format chart\n. . . .\n. / \u25CB .\n", "e.txt").rows, mesh::parse_pattern("format chart\n. . . .\n. / o .\n", "e.txt").rows);
-  EXPECT_EQ(mesh::parse_pattern("format chart round\nkey \u25C6 k1 tbl\n\u25C6 \u2022\n", "t.txt").rows, mesh::parse_pattern("format chart round\nt -\n", "t.txt").rows);
-  EXPECT_TRUE(same_fabric(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/moss-printed.txt"), bundled("moss")));
-  // A chart and the written rows it draws: the same stitches, decreases and yarn-overs included.
-  const auto chart = mesh::parse_pattern("format chart\n. . . .\n. / o .\n", "e.txt");
-  const auto written = mesh::parse_pattern("Row 1 (RS): *K1, yo, k2tog, k1; rep from * to end.\nRow 2: Purl.\n", "e.txt");
-  EXPECT_EQ(chart.rows, written.rows);
-  // A cable's key drawn over its cells; "no stitch" cells take none; the name comment carries over.
-  const auto cable = mesh::parse_pattern("# name: Rope\nformat chart round\nkey C C4F\nkey _ no stitch\n. . . . . _\n. C C C C _\n", "c.txt");
-  EXPECT_EQ(cable.name, "Rope");
-  ASSERT_EQ(cable.cables.size(), 1u);
-  EXPECT_EQ(cable.width(), 5);
-  // Every bundled chart reads, and the rope cable's chart is its written instructions' fabric.
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(SKEIN_PATTERNS_DIR) + "/charts")) {
-    SCOPED_TRACE(entry.path().string());
-    EXPECT_NO_THROW(mesh::read_pattern(entry.path()));
-  }
-  EXPECT_TRUE(same_fabric(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/rope-cable.txt"),
-                          mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/rope-cable.txt")));
-}
-
-TEST(ChartPattern, ErrorsNameTheChartsLineAndColumn) {
-  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
-  EXPECT_EQ(error("format chart\n. . Q .\n"),
-            "p.txt: line 2, column 5: 'Q' is not in the chart's key (- . / O V \\ ^ o t v x | \u039B \u2013 \u2022 \u2212 \u2227 \u2228 \u25A0 \u25A1 \u25CB \u25CF "
-            "\u25EF; add 'key Q STITCH' above the chart)");
-  EXPECT_EQ(error("format chart\nkey C C4F\n. C C C .\n"), "p.txt: line 3, column 3: 'C' is C4F, drawn over 4 cells, but here over 3");
-  EXPECT_EQ(error("format chart\n. .  2\n. .  2\n"), "p.txt: line 3: is numbered 2 but is row 1 (the bottom row is row 1)");
-  EXPECT_EQ(error("format chart\nt .\n. .\n"),
-            "p.txt: line 2, column 1: 't' (k1 tbl) on a wrong-side row: the key gives it no wrong-side stitch (key t RS / WS)");
-  EXPECT_EQ(error("format chart\n. .\nkey C C4F\n"), "p.txt: line 3: a key line after the chart's rows: give the key first");
-  EXPECT_EQ(error("format chart\n. 3 .\n"), "p.txt: line 2, column 3: a number inside a chart row: row numbers go at its start or its end");
-  EXPECT_EQ(error("format chart\n"), "p.txt: holds no chart rows");
-  EXPECT_EQ(error("format chart\nkey 7 k\n. .\n"), "p.txt: line 2: a chart symbol is one printable character other than a digit (digits number the rows)");
-  // Columns count characters, not bytes: the ring is three bytes of UTF-8 and one cell.
-  EXPECT_EQ(error("format chart\n\u25CB Q\n"), error("format chart\n. Q\n"));
-  EXPECT_EQ(error("format chart\n. \xff .\n"), "p.txt: line 2, column 3: is not UTF-8 text here: a chart cell is one character (ASCII or UTF-8)");
-  EXPECT_EQ(error("format chart\n. \xe2\x80\n"), "p.txt: line 2, column 3: is not UTF-8 text here: a chart cell is one character (ASCII or UTF-8)");
-  // What the written reader refuses in the row a chart makes, placed on the chart: the lone yarn-over's cell.
-  const auto lone = error("format chart\n. . . .\n. v o v\n");
-  EXPECT_EQ(lone.rfind("p.txt: line 3, column 5: a yarn-over has a stitch model beside its decrease", 0), 0u) << lone;
-  // A cable key of no stitches (found by fuzzing: it drew the cable over no cells and never ended) is no cable.
-  const auto none = error("format chart\nkey C C0B\n- C C -\n");
-  EXPECT_EQ(none, "p.txt: line 3, column 5: 'c0b': cables of 2, 4 or 6 stitches (half over half) have models");
-  const auto width = error("format chart round\n. . . . .\n. / . .\n");
-  EXPECT_NE(width.find("(line 3)"), std::string::npos) << width;
-}
-
-TEST(ChartPattern, EveryPatternAChartCanSayIsWrittenAsAChartAndAsInstructionsThatReadBackAsItsStitches) {
-  // Every bundled knit, written pattern and chart: written out as chart text and as written instructions, each
-  // read back by its own reader gives the same stitches and cables; the rest are refused naming the stitch.
-  int written = 0, refused = 0;
-  for (const char* folder : {"", "/written", "/charts"})
-    for (const auto& entry : std::filesystem::directory_iterator(std::string(SKEIN_PATTERNS_DIR) + folder)) {
-      const auto ext = entry.path().extension();
-      if (!entry.is_regular_file() || ext == ".weave" || ext == ".md") continue;
-      SCOPED_TRACE(entry.path().string());
-      const auto pattern = mesh::read_pattern(entry.path());
-      std::string chart, instructions;
-      try {
-        chart = mesh::write_chart_pattern(pattern);
-      } catch (const Error& e) {
-        EXPECT_NE(std::string(e.rule()).find("has no chart symbol yet"), std::string::npos) << e.what();
-        EXPECT_NE(e.place().find("row "), std::string::npos) << e.what();
-        EXPECT_NE(error_of([&] { mesh::write_written_pattern(pattern); }), "");
-        ++refused;
-        continue;
-      }
-      instructions = mesh::write_written_pattern(pattern);
-      for (const auto& [text, what] : {std::pair{chart, "chart"}, {instructions, "instructions"}}) {
-        const auto back = mesh::parse_pattern(text, "back.txt");
-        EXPECT_EQ(back.rows, pattern.rows) << what << ":\n" << text;
-        EXPECT_EQ(back.colours, pattern.colours) << what << ":\n" << text;
-        EXPECT_EQ(back.palette, pattern.palette) << what << ":\n" << text;
-        EXPECT_EQ(back.cables.size(), pattern.cables.size()) << what << ":\n" << text;
-        for (const auto& c : pattern.cables) EXPECT_NE(std::find(back.cables.begin(), back.cables.end(), c), back.cables.end()) << what << ":\n" << text;
-        EXPECT_EQ(back.name, pattern.name);
-        EXPECT_EQ(back.whole, pattern.whole) << what << ":\n" << text;
-      }
-      EXPECT_TRUE(mesh::is_chart_pattern(chart));
-      ++written;
-    }
-  EXPECT_GE(written, 30);
-  EXPECT_GT(refused, 0);
-  // As a knitter reads them: a flat chart with its cable key and numbered rows (wrong-side rows at the left, where
-  // they are read from), runs counted in the instructions.
-  const auto cable = bundled("cable-4");
-  EXPECT_NE(mesh::write_chart_pattern(cable).find("format chart\nkey C C4B\n4   - - . . . . - -\n    - - . . . . - -   3\n"), std::string::npos) << mesh::write_chart_pattern(cable);
-  EXPECT_NE(mesh::write_written_pattern(cable).find("Row 1 (RS): p2, C4B, p2.\nRow 2 (WS): k2, p4, k2.\n"), std::string::npos)
-      << mesh::write_written_pattern(cable);
-  // A lace pair on a wrong-side row is worked from that side: "yo, ssp" is ys from the front.
-  const auto lace = mesh::parse_pattern("format knit\nk ys k\nk k k k\n", "l.knit");  // the top line is row 2
-  EXPECT_NE(mesh::write_chart_pattern(lace).find("format chart\n"), std::string::npos) << mesh::write_chart_pattern(lace);
-  EXPECT_NE(mesh::write_written_pattern(lace).find("Row 2 (WS): p1, yo, ssp, p1."), std::string::npos) << mesh::write_written_pattern(lace);
-  EXPECT_NE(error_of([] { mesh::write_chart_pattern(mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/plain-weave.weave")); }).find("woven"),
-            std::string::npos);
-  // Increases into one stitch, drawn over the stitches they make: kfb on either side, a group as books write it.
-  const auto kfb = mesh::parse_pattern("format knit\npq d12p\nk k k\n", "i.knit");
-  EXPECT_NE(mesh::write_written_pattern(kfb).find("Row 2 (WS): kfb, k2tog."), std::string::npos) << mesh::write_written_pattern(kfb);
-  const auto trinity = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/trinity.txt");
-  EXPECT_NE(mesh::write_written_pattern(trinity).find("Row 2 (WS): (k1, p1, k1) in next st, p3tog."), std::string::npos) << mesh::write_written_pattern(trinity);
-  EXPECT_NE(mesh::write_chart_pattern(trinity).find("key + (p1, k1, p1) in next st / (k1, p1, k1) in next st\n4   { + + +\n"), std::string::npos)
-      << mesh::write_chart_pattern(trinity);
-  // A shaped piece: cast on, every row whole with the counts of the rows that change it; its chart's rows centred
-  // between 'no stitch' cells.
-  const auto wedge = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/stockinette-kfb-wedge.txt");
-  EXPECT_NE(mesh::write_written_pattern(wedge).find("Cast on 4 sts.\n# written instructions, by skein (patterns/FORMAT.md)\nRow 1 (RS): k1, kfb, k2. (5 sts)\nRow 2 (WS): p5.\n"),
-            std::string::npos)
-      << mesh::write_written_pattern(wedge);
-  EXPECT_NE(mesh::write_chart_pattern(wedge).find("cast on 4 sts\nkey + kfb / (p1 tbl, p1) in next st\n"), std::string::npos) << mesh::write_chart_pattern(wedge);
-  EXPECT_NE(mesh::write_chart_pattern(wedge).find("x x . . + + . x   1\n"), std::string::npos) << mesh::write_chart_pattern(wedge);
-  // Travelling stitches: knits crossing purls behind them, named as the source names them.
-  const auto zigzag = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/travelling-zigzag.txt");
-  EXPECT_NE(mesh::write_written_pattern(zigzag).find("Row 1 (RS): p3, T3B."), std::string::npos) << mesh::write_written_pattern(zigzag);
-  // Lace pairs drawn so that each yarn-over goes back to its own decrease: feather and fan's three k2tog before the yarn-overs.
-  const auto fan = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/feather-and-fan.txt");
-  EXPECT_NE(mesh::write_written_pattern(fan).find("Row 3 (RS): k2tog, k2tog, k2tog, yo, k1, yo, k1,"), std::string::npos) << mesh::write_written_pattern(fan);
-}
-
 TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
   const std::string dir = std::string(SKEIN_PATTERNS_DIR) + "/written/";
   for (const auto& name : {"garter-rib", "broken-rib", "rib-3x1", "diagonal-rib", "checkerboard", "basketweave", "double-seed", "welt", "rib-2x2", "seed", "rib-1x1", "moss"}) {
     const auto written = mesh::read_pattern(dir + name + ".txt");
-    EXPECT_TRUE(same_fabric(written, bundled(name))) << name << " read as " << rows_text(written);
+    EXPECT_TRUE(same_fabric(written, bundled_knit(name))) << name << " read as " << rows_text(written);
   }
   // The rest as the stitches a knitter would name: each row's mistake-rib offset, linen stitch's offset slips,
   // twisted knits, the lace rib's ys, the C6F cable and the 1/1 RT twists.
@@ -495,80 +325,6 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
   // Garter lace: "k2tog, yo" from the wrong side is a purl decrease beside its yarn-over from the front (2up, ysp).
   EXPECT_EQ(ws_of("K1, k2tog, yo, k1."), "k k k k / p 2up p / ");
   EXPECT_EQ(ws_of("K1, yo, ssk, k1."), "k k k k / p ysp p / ");
-}
-
-TEST(PatternColours, DeclaredAsPatternsNameThem) {
-  const auto read = [](const std::string& line, bool bare = true) { return mesh::read_colour_declaration(line, bare, 0, "", "line 1"); };
-  const auto hex = [](const std::optional<mesh::PatternColour>& c) { return c ? mesh::colour_code(c->srgb) : std::string("none"); };
-  EXPECT_EQ(hex(read("MC: cream")), "#f0e6cf");                             // a colour word
-  EXPECT_EQ(hex(read("Colour A (MC): natural #E9DCC3")), "#e9dcc3");        // a code beats the word
-  EXPECT_EQ(hex(read("CC = Deep Navy Blue")), "#1f2a44");                   // the first colour word it holds
-  EXPECT_EQ(hex(read("colour X2: my own heather", false)), "#f0e6cf");     // no word: the default palette's first
-  EXPECT_EQ(read("Colour B (CC): red #b3261e")->description, "red");
-  EXPECT_EQ(read("Colour B (CC): red #b3261e")->name, "B");
-  EXPECT_FALSE(read("MC: cream", false));  // skein's own formats want the word 'colour'
-  EXPECT_FALSE(read("Multiple of 4 sts plus 2."));
-  EXPECT_FALSE(read("Note: work loosely."));
-  EXPECT_EQ(error_of([&] { read("colour A: red #b326"); }), "line 1: a colour code is # and six hex digits (#f0e6cf), found '#b326'");
-  EXPECT_EQ(error_of([&] { read("colour k: red"); }), "line 1: 'k' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
-  EXPECT_EQ(mesh::comment_start("colour A: cream #f0e6cf  # the main colour"), 25u);
-  EXPECT_EQ(mesh::comment_start("k p # note"), 4u);
-  // A code without its '#', a code that is not one, a second name in brackets, a stitch letter as a name.
-  EXPECT_EQ(hex(read("CC: 1f2a44")), "#1f2a44");
-  EXPECT_EQ(error_of([&] { read("A: natural #e9dcg3"); }), "line 1: a colour code is # and six hex digits (#f0e6cf), found '#e9dcg3'");
-  EXPECT_EQ(read("Colour A (MC): natural")->alias, "MC");
-  EXPECT_EQ(error_of([&] { read("K: cream"); }), "line 1: 'K' cannot name a colour: it reads as a stitch or a count (name colours MC, CC, A, B, ...)");
-  EXPECT_EQ(error_of([] { mesh::parse_pattern("Colour A (MC): natural\nMC: white\nRow 1: knit.\n", "d.txt"); }), "d.txt: line 2: colour 'MC' is declared twice");
-  EXPECT_EQ(mesh::parse_pattern("Colour A (MC): natural\nColour B (CC): red\nRnd 1: k1, with CC, k1.\n", "a.txt").colours[0], (std::vector<int>{1, 0}));
-  EXPECT_EQ(error_of([] { mesh::parse_pattern("MC: white\nRnd 1: k1, with DC, k1.\n", "u.txt"); }),
-            "u.txt: line 2, column 17: 'with dc' names a colour the pattern does not declare (MC)");
-  // A colour after a stitch that is not declared is named as one (and as the abbreviation it is not).
-  EXPECT_EQ(error_of([] { mesh::parse_pattern("MC: white\nCC: navy\nRnd 1: k2 DC, k2.\n", "k.txt"); }),
-            "k.txt: line 3, column 11: 'dc' after a stitch would be its colour, but the pattern does not declare it (MC, CC); as an "
-            "abbreviation it is unknown: did you mean 'k', 'p', 'yo'?");
-}
-
-TEST(PatternColours, KnitFilesGiveEachStitchAColourOrEachRowOne) {
-  const auto p = mesh::parse_pattern(
-      "format knit\ncolour MC: cream #f0e6cf  # main\ncolour CC: red\np cable2x2+ p\nk k k k k k\ncolours\nMC CC CC CC CC MC\nCC\n", "c.knit");
-  ASSERT_EQ(p.palette.size(), 2u);
-  EXPECT_EQ(mesh::colour_code(p.palette[0].srgb), "#f0e6cf");
-  EXPECT_EQ(p.colours, (std::vector<std::vector<int>>{{1, 1, 1, 1, 1, 1}, {0, 1, 1, 1, 1, 0}}));  // bottom row first; the cable's four faces each
-  // The faces of a tiling take their stitches' colours (row by row, each row's repeats left to right), its palette the pattern's.
-  const auto tiling = mesh::pattern_stitch_mesh(p, 2, 1);
-  std::vector<int> faces;
-  for (const auto& f : tiling.faces) faces.push_back(f.colour);
-  EXPECT_EQ(faces, (std::vector<int>{1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 0, 0, 1, 1, 1, 1, 0}));
-  EXPECT_EQ(tiling.palette, p.palette);
-  EXPECT_TRUE(mesh::pattern_stitch_mesh(mesh::parse_pattern("format knit\nk p\n", "p.knit"), 2, 2).palette.empty());
-  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "c.knit"); }); };
-  EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA B\n"), "c.knit: line 5, column 3: 'B' is not a declared colour (A)");
-  EXPECT_EQ(error("format knit\ncolour A: red\nk k\ncolours\nA A A\n"),
-            "c.knit: line 5: gives 3 colours for row 1 (line 3), which has 2 stitches (a cable's each): one colour per stitch, or one for the whole row");
-  EXPECT_EQ(error("format knit\ncolour A: red\nk k\nk k\ncolours\nA\n"), "c.knit: line 6: the colours block has 1 line but the pattern 2 rows");
-  EXPECT_EQ(error("format knit\nk k\ncolours\nA\n"), "c.knit: line 3: 'colours' with no colour declared: declare them first ('colour A: cream')");
-  EXPECT_EQ(error("format knit\ncolour A: red\ncolour a: blue\nk k\n"), "c.knit: line 3: colour 'a' is declared twice");
-  EXPECT_EQ(error("format knit\nk k\ncolour A: red\n"), "c.knit: line 3: a colour declaration after the rows: declare the colours first");
-}
-
-TEST(PatternColours, WrittenInstructionsSayTheColourAsKnittersDo) {
-  // "With CC" holds for the rows after it until another colour is named; "k2 B" colours those stitches alone.
-  const auto stripes = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/garter-stripes.txt");
-  ASSERT_EQ(stripes.height(), 8);  // four rows of each colour: not the two-row garter repeat
-  for (int r = 0; r < 8; ++r) EXPECT_EQ(stripes.colours[r], std::vector<int>{r < 4 ? 0 : 1}) << "row " << r + 1;
-  const auto rib = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/written/corrugated-rib.txt");
-  EXPECT_EQ(rib.rows, (std::vector<std::vector<std::string>>{{"p", "p", "k", "k"}}));  // the WS row is the RS row seen from the front
-  EXPECT_EQ(rib.colours, (std::vector<std::vector<int>>{{0, 0, 1, 1}}));               // knits in B, purls in A
-  // "with CC" in round 1 holds into round 2; rounds are worked right to left as seen from the front.
-  const auto p = mesh::parse_pattern("MC: white\nCC: black\nRnd 1: k1, with CC, k1, k1 in MC, k1.\nRnd 2: k2 MC, k1 CC, k1.\n", "w.txt");
-  EXPECT_EQ(p.colours, (std::vector<std::vector<int>>{{1, 0, 1, 0}, {1, 1, 0, 0}}));
-  // Without a palette, a colour name is an unknown abbreviation, as before.
-  EXPECT_NE(error_of([] { mesh::parse_pattern("Rnd 1: k1 CC, k1.\n", "w.txt"); }).find("unknown abbreviation 'cc'"), std::string::npos);
-  // The peerie chart: 'X' is keyed "k1 CC", the rest the main colour; charts are drawn as seen from the front.
-  const auto peerie = mesh::read_pattern(std::string(SKEIN_PATTERNS_DIR) + "/charts/peerie.txt");
-  ASSERT_EQ(peerie.height(), 7);
-  EXPECT_EQ(peerie.colours[3], (std::vector<int>{1, 0, 0, 0, 1, 0}));
-  EXPECT_EQ(peerie.colours[0], (std::vector<int>(6, 0)));
 }
 
 // kfb on the right-side rows of a piece, with the stitch counts books write after a row ("(5 sts)", "— 5 sts").

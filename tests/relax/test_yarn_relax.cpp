@@ -35,62 +35,6 @@ YarnRelaxOptions squeeze_options() {
 
 }  // namespace
 
-TEST(YarnAudit, LinkingNumbersOfLinkedAndSeparateRings) {
-  const auto linked = skein::testing::linked_rings();
-  EXPECT_NEAR(std::abs(linking_number(curve_points(linked, 0), curve_points(linked, 1))), 1.0, 1e-9);
-  auto apart = linked;
-  for (int p = apart.curve_start[1]; p < apart.curve_start[2]; ++p) apart.points[p].z() += 10;
-  EXPECT_NEAR(linking_number(curve_points(apart, 0), curve_points(apart, 1)), 0.0, 1e-9);
-  const auto all = linking_numbers(linked);
-  ASSERT_EQ(all.size(), 1u);
-  EXPECT_EQ(std::abs(all[0].number), 1);
-}
-
-TEST(YarnAudit, LinkingNumbersSeeARingHookedCloserThanFourSamplesASegmentResolve) {
-  // A: a closed Catmull-Rom curve through the four corners of a diamond (a rounded square, 5 mm). B: a ring of
-  // radius 0.02 mm around A's curve where four samples a segment cut the corner by three times that, so B
-  // hooks the curve but not the coarse polyline; the fixed 4-sample rule called this pair unlinked.
-  relax::YarnCurves y;
-  y.radius = 0.3;
-  y.points = {{5, 0, 0}, {0, 5, 0}, {-5, 0, 0}, {0, -5, 0}};
-  const auto cr = [](const Vector3d& p0, const Vector3d& p1, const Vector3d& p2, const Vector3d& p3, double t) {
-    const double t2 = t * t, t3 = t2 * t;
-    return Vector3d(0.5 * ((-t3 + 2 * t2 - t) * p0 + (3 * t3 - 5 * t2 + 2) * p1 + (-3 * t3 + 4 * t2 + t) * p2 + (t3 - t2) * p3));
-  };
-  const auto& P = y.points;
-  const Vector3d centre = cr(P[3], P[0], P[1], P[2], 0.625), before = cr(P[3], P[0], P[1], P[2], 0.5), after = cr(P[3], P[0], P[1], P[2], 0.75);
-  ASSERT_GT((centre - 0.5 * (before + after)).norm(), 0.06);  // the coarse polyline passes 0.06 mm and more away
-  const Vector3d tangent = (after - before).normalized(), u = tangent.unitOrthogonal(), v = tangent.cross(u);
-  for (int k = 0; k < 8; ++k) {
-    const double a = 2 * M_PI * k / 8;
-    y.points.push_back(centre + 0.02 * (std::cos(a) * u + std::sin(a) * v));
-  }
-  y.curve_start = {0, 4, 12};
-  y.closed = {1, 1};
-  y.point_face.assign(y.points.size(), -1);
-  std::vector<Vector3d> coarse;  // A as the fixed rule sampled it: four samples a segment
-  for (int k = 0; k < 4; ++k)
-    for (int m = 0; m < 4; ++m) coarse.push_back(cr(P[(k + 3) % 4], P[k], P[(k + 1) % 4], P[(k + 2) % 4], m / 4.0));
-  EXPECT_NEAR(linking_number(coarse, curve_points(y, 1)), 0.0, 1e-9);
-  const auto links = linking_numbers(y);
-  ASSERT_EQ(links.size(), 1u);
-  EXPECT_EQ(std::abs(links[0].number), 1);
-  // Moved off the curve by 0.3 mm (outside the corner), the ring is free: 0.
-  for (int p = 4; p < 12; ++p) y.points[p] += 0.3 * (centre - 0.5 * (before + after)).normalized();
-  EXPECT_EQ(linking_numbers(y)[0].number, 0);
-}
-
-TEST(YarnAudit, AuditorCountsARingPulledThroughAnother) {
-  const auto yarn = skein::testing::linked_rings();
-  const auto system = make_yarn_system(yarn);
-  Eigen::Matrix3Xd after = system.points;
-  for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) after(0, p) += 8;  // drag ring B off ring A
-  EXPECT_GT(TopologyAuditor(system).crossings(system.points, after).size(), 0u);
-  Eigen::Matrix3Xd lifted = system.points;
-  for (int p = yarn.curve_start[1]; p < yarn.curve_start[2]; ++p) lifted(1, p) += 0.1;  // a small slide
-  EXPECT_TRUE(TopologyAuditor(system).crossings(system.points, lifted).empty());
-}
-
 TEST(RunControl, StopReasonsWinInOneOrderRollbacksRunOutAndCheckpointsComeOnTime) {
   // The policy both back-ends share (the CPU loop and the GPU's batches).
   YarnRelaxOptions options;

@@ -47,27 +47,6 @@ double periodic_against_tiled(const std::string& text) {
 }
 }  // namespace
 
-TEST(YarnPeriodic, VirtualPointsFollowTheirRealPointsAndFrozenOnesStay) {
-  const auto pattern = mesh::parse_pattern("format knit\np k\nk p\n", "seed.knit");
-  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
-  EXPECT_EQ(patch.tiles, 5);
-  const long real = std::count(patch.ring.begin(), patch.ring.end(), 0);
-  EXPECT_EQ(static_cast<long>(patch.map.virtual_points.size()), 8 * real);  // one ring of 8 repeats, every point matched
-  ShapeTargets targets;
-  targets.periodic = patch.map;
-  const auto system = make_yarn_system(patch.yarn);
-  YarnRelaxOptions options;
-  options.max_steps = 40;
-  const auto run = relaxed(system, options, targets);
-  EXPECT_EQ(run.report.pull_through_events, 0);
-  for (size_t i = 0; i < patch.map.virtual_points.size(); ++i) {
-    const Eigen::Vector3d expected = run.state.points.col(patch.map.real_points[i]) + patch.map.offsets[i];
-    EXPECT_LT((run.state.points.col(patch.map.virtual_points[i]) - expected).norm(), 1e-9);
-  }
-  for (int p : patch.map.frozen) EXPECT_EQ(run.state.points.col(p), system.points.col(p));
-  EXPECT_GT((run.state.points - system.points).cwiseAbs().maxCoeff(), 0.01);  // the real points did move
-}
-
 TEST(YarnPeriodic, PeriodicPatchAgreesWithTheCentreOfATiledRelaxation) {
   const double seed = periodic_against_tiled("format knit\np k\nk p\n");
   const double rib = periodic_against_tiled("format knit\nk k p p\nk k p p\n");
@@ -129,26 +108,6 @@ TEST(YarnPeriodic, RadiusScalingMatchesThePhysicalModel) {
   std::printf("radius scaling gamma %.2f against the physical model: RMS %.4f r, energies %.6g and %.6g\n", gamma, rms, run_a.report.energy,
               run_b.report.energy);
   EXPECT_LT(rms, 0.05);
-}
-
-TEST(YarnPeriodic, AScaledPeriodKeepsVirtualPointsOnTheirRealOnesAndTheYarnLength) {
-  const auto pattern = mesh::parse_pattern("format knit\nk k p p\nk k p p\n", "rib.knit");
-  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
-  auto system = make_yarn_system(patch.yarn);
-  const auto rest = system.rest_length;
-  ShapeTargets targets;
-  targets.periodic = patch.map;
-  scale_period(targets.periodic, system.points, 0.9, 1.05);
-  EXPECT_NEAR(targets.periodic.offsets[0].x(), 0.9 * patch.map.offsets[0].x(), 1e-12);
-  for (size_t i = 0; i < targets.periodic.virtual_points.size(); ++i)
-    EXPECT_LT((system.points.col(targets.periodic.virtual_points[i]) - system.points.col(targets.periodic.real_points[i]) - targets.periodic.offsets[i]).norm(),
-              1e-9);
-  EXPECT_EQ(system.rest_length, rest);
-  YarnRelaxOptions options;
-  options.audit = false;
-  const auto run = relaxed(system, options, targets);
-  EXPECT_TRUE(run.report.converged) << run.report.stopped_by;
-  EXPECT_THROW(scale_period(targets.periodic, system.points, 0, 1), skein::Error);
 }
 
 TEST(YarnPeriodic, TiledPreviewPlacesEveryCopyOfARealPointAndBordersFollow) {
