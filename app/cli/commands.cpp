@@ -234,16 +234,6 @@ std::map<std::string, double> parse_take_up(const std::string& option, const std
   return out;
 }
 
-double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat) {
-  // The yarn of one repeat: the rest lengths of the segments that start at a real point.
-  std::vector<char> copy(system.num_points(), 0);
-  for (int v : periodic.virtual_points) copy[v] = 1;
-  double yarn = 0;
-  for (int s = 0; s < system.num_segments(); ++s)
-    if (!copy[system.segment_points[s][1]]) yarn += system.rest_length[s];
-  return yarn / (repeat[0] * repeat[1]);
-}
-
 Fabric resolve_fabric(const FabricChoice& choice, bool size_given, bool radius_given) {
   Fabric out;
   if (choice.yarn.empty() && choice.gauge.empty() && choice.needle.empty()) return out;
@@ -416,7 +406,7 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
     if (run.repeat[0] > 0 && run.repeat[1] > 0) {
       free["gauge_per_10cm"] = {{"stitches", 100.0 * run.repeat[0] / lx}, {"rows", 100.0 * run.repeat[1] / ly}};
       // Munden's dimensional constants Kc = courses per length × l and Kw = wales per length × l.
-      const double loop = patch_loop_length(system, targets.periodic, run.repeat) * run.scale;
+      const double loop = relax::patch_loop_length(system, targets.periodic, run.repeat) * run.scale;
       free["loop_length_mm"] = loop;
       free["Kc"] = run.repeat[1] / ly * loop;
       free["Kw"] = run.repeat[0] / lx * loop;

@@ -155,10 +155,6 @@ struct YarnRunOutputs {
   std::string tubes;  ///< the relaxed yarn's tubes too (write_tubes), unless empty
 };
 
-/// A periodic patch's yarn per stitch of its repeat (wales x courses): the rest lengths of the segments that start
-/// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
-double patch_loop_length(const relax::YarnSystem& system, const relax::PeriodicMap& periodic, const std::array<int, 2>& repeat);
-
 /// A yarn run as relax_and_write leaves it: its JSON report (with the residual history) and why it stopped.
 struct RelaxOutcome {
   json report;

@@ -2,6 +2,7 @@
 #include "subcommand.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -217,14 +218,16 @@ struct PatternCommand final : Subcommand {
       spdlog::info("wrote {}", pat_ids);
     };
     Eigen::Vector2d period_scale(1, 1);
+    std::array<int, 2> repeat{pattern.width(), pattern.height()};  // the relaxed repeat's stitches (the patch's: PeriodicPatch::repeat)
     if (pat_relax && !pat_tiled) {
       auto patch = pattern.format == mesh::PatternFormat::Woven ? workflow::periodic_woven_patch(pattern, 4 * radius, sim_radius)
                                                                 : workflow::periodic_patch(pattern, library, pat_size, sim_radius);
       if (preview) patch_kept = patch;
+      repeat = patch.repeat;
       spdlog::info("periodic patch: {} x {} repeats, {} real, {} virtual and {} frozen control points", patch.tiles, patch.tiles,
                    std::count(patch.ring.begin(), patch.ring.end(), 0), patch.map.virtual_points.size(), patch.map.frozen.size());
       pat_extra = {{"pattern", pattern.name},
-                   {"periodic", {{"tiles", patch.tiles}, {"real_points", std::count(patch.ring.begin(), patch.ring.end(), 0)},
+                   {"periodic", {{"tiles", patch.tiles}, {"repeat", patch.repeat}, {"real_points", std::count(patch.ring.begin(), patch.ring.end(), 0)},
                                  {"virtual_points", patch.map.virtual_points.size()}, {"frozen_points", patch.map.frozen.size()}}}};
       yarn = std::move(patch.yarn);
       targets.periodic = std::move(patch.map);
@@ -274,7 +277,7 @@ struct PatternCommand final : Subcommand {
         // yarn of the periodic patch cut (or let out) to Munden's loop length for the gauge (docs/yarn.md).
         pat_extra["fabric"]["contact_radius_mm"] = sim_radius / pat_gamma;
         if (!targets.periodic.empty() && pat->count("--take-up") == 0 && pat_extra["fabric"].contains("munden_loop_length_mm")) {
-          const double loop = patch_loop_length(system, targets.periodic, {pattern.width(), pattern.height()}) / pat_gamma;
+          const double loop = relax::patch_loop_length(system, targets.periodic, repeat) / pat_gamma;
           pat_take_up = workflow::take_up_to_munden(loop, pat_extra["fabric"]["munden_loop_length_mm"].get<double>(), pat_in, "--yarn " + pat_fabric.yarn);
           system = relax::make_yarn_system(yarn, pat_take_up, take_up_by_type, pat_options.sampling);
           pat_extra["fabric"]["take_up_to_munden"] = pat_take_up;
@@ -298,7 +301,7 @@ struct PatternCommand final : Subcommand {
       const auto run = relax_and_write(yarn, system, targets, pat_options, state,
                                        {pat_in, pat_out, pat_backend, pat_report, pat_log, pat_png, pat_views,
                                         !context.quiet && isatty(fileno(stderr)), pat_extra, pat_panel, color, 1 / pat_gamma,
-                                        compressed ? radius : 0.0, {pattern.width(), pattern.height()}, pat_tubes});
+                                        compressed ? radius : 0.0, repeat, pat_tubes});
       if (preview && run.stopped_by != relax::StopReason::Interrupted) {
         // The relaxed repeat tiled N x M: a preview of the fabric without relaxing the tiling.
         auto tiled = pattern.format == mesh::PatternFormat::Woven

@@ -44,18 +44,6 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
 
 woven::Weave read_weave(const std::string& path) { return woven::from_pattern(mesh::read_pattern(path)); }
 
-/// A posterized picture: each pixel's colour index, colours numbered in the order they first appear (top row first).
-std::vector<int> picture_labels(const render::Image& image, int& colours) {
-  std::map<std::array<std::uint8_t, 3>, int> index;
-  std::vector<int> labels(static_cast<size_t>(image.width) * image.height);
-  for (size_t k = 0; k < labels.size(); ++k) {
-    const std::array<std::uint8_t, 3> c{image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]};
-    labels[k] = index.emplace(c, static_cast<int>(index.size())).first->second;
-  }
-  colours = static_cast<int>(index.size());
-  return labels;
-}
-
 json score_json(const woven::SynthesisScore& s) {
   return {{"crossings", s.crossings}, {"correct", s.correct}, {"neighbour_matches", s.matches}, {"best_possible_matches", s.best_matches},
           {"consistent", s.consistent}, {"continuity", s.continuity}};
@@ -180,7 +168,7 @@ json weave_volume(const WeaveVolumeArgs& args) {
   if (!args.picture.empty()) {
     const auto image = render::read_png(args.picture);
     int colours = 0;
-    const auto labels = picture_labels(image, colours);
+    const auto labels = woven::picture_labels(image, colours);
     if (colours != static_cast<int>(args.weaves.size()))
       throw Error(args.picture, "", "has " + std::to_string(colours) + " colours and --weaves names " + std::to_string(args.weaves.size()) +
                                         " weaves: name one weave per colour (posterize the picture first)");

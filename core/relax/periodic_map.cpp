@@ -56,4 +56,14 @@ void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient) {
   for (int p : map.frozen) gradient.col(p).setZero();
 }
 
+double patch_loop_length(const YarnSystem& system, const PeriodicMap& map, const std::array<int, 2>& repeat) {
+  // The yarn of one repeat: the rest lengths of the segments that start at a real point.
+  std::vector<char> copy(system.num_points(), 0);
+  for (int v : map.virtual_points) copy[v] = 1;
+  double yarn = 0;
+  for (int s = 0; s < system.num_segments(); ++s)
+    if (!copy[system.segment_points[s][1]]) yarn += system.rest_length[s];
+  return yarn / (repeat[0] * repeat[1]);
+}
+
 }  // namespace skein::relax

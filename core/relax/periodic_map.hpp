@@ -2,9 +2,12 @@
 // Periodic boundary conditions of a yarn system (Leaf 2018 §5, Algorithm 2): which control points copy which,
 // the repeat's period, and the moves and gradients that keep the copies copies. Built by workflow's
 // periodic_patch; used by the relaxers, the guard and the auditor.
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "relax/yarn_system.hpp"
 
 namespace skein::relax {
 
@@ -40,5 +43,9 @@ void set_period(PeriodicMap& map, Eigen::Matrix3Xd& points, const Eigen::Vector3
 /// Zeroes the gradient of virtual and frozen points: they are not degrees of freedom, so neither the
 /// integrator nor the convergence test (Leaf eq. 5) may count them.
 void constrain_gradient(const PeriodicMap& map, Eigen::Matrix3Xd& gradient);
+
+/// A periodic patch's yarn per stitch of its repeat (wales x courses): the rest lengths of the segments that start
+/// at a real point, over the stitches; the loop length l of Munden's constants, in the system's units.
+double patch_loop_length(const YarnSystem& system, const PeriodicMap& map, const std::array<int, 2>& repeat);
 
 }  // namespace skein::relax

@@ -64,6 +64,22 @@ int Pattern::stitches() const {
   return n;
 }
 
+Pattern stacked(const Pattern& pattern, int times) {
+  if (pattern.format == PatternFormat::Woven || pattern.whole || times < 1)
+    throw Error("", "pattern " + pattern.name, "only a knit's repeat stacks (not a woven or a shaped piece), at least once");
+  Pattern out = pattern;
+  const int h = pattern.height();
+  for (int k = 1; k < times; ++k) {
+    out.rows.insert(out.rows.end(), pattern.rows.begin(), pattern.rows.end());
+    out.colours.insert(out.colours.end(), pattern.colours.begin(), pattern.colours.end());
+    for (PatternCable cable : pattern.cables) {
+      cable.row += k * h;
+      out.cables.push_back(cable);
+    }
+  }
+  return out;
+}
+
 Pattern parse_pattern(const std::string& text, const std::string& source) {
   if (is_wif_pattern(text)) return parse_wif_pattern(text, source);
   if (is_chart_pattern(text)) return parse_chart_pattern(text, source);

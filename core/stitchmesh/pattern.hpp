@@ -54,6 +54,9 @@ struct Pattern {
   int stitches() const; ///< knits: faces in one repeat (pattern_stitch_mesh)
 };
 
+/// A knit's repeat `times` over up: its rows, cables and colours again above themselves (the same fabric, a taller repeat).
+Pattern stacked(const Pattern& pattern, int times);
+
 /// Knits: the loops a row of stitch types takes from the row below, and the loops it makes for the row above.
 int loops_taken(const std::vector<std::string>& row);
 int loops_made(const std::vector<std::string>& row);

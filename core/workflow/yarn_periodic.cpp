@@ -103,10 +103,12 @@ void drop_frozen(PeriodicPatch& patch) {
 
 }  // namespace
 
-PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius) {
-  if (pattern.format == mesh::PatternFormat::Woven) throw Error("", "pattern " + pattern.name, "is woven: use periodic_woven_patch");
+PeriodicPatch periodic_patch(const mesh::Pattern& written, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius) {
+  if (written.format == mesh::PatternFormat::Woven) throw Error("", "pattern " + written.name, "is woven: use periodic_woven_patch");
+  const mesh::Pattern pattern = written.height() % 2 == 0 ? written : mesh::stacked(written, 2);
   const int rings = virtual_rings(pattern);
   PeriodicPatch patch;
+  patch.repeat = {pattern.width(), pattern.height()};
   patch.tiles = 2 * rings + 3;
   const auto stitch = mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size);
   mesh::EmitOptions emit;
@@ -157,6 +159,7 @@ PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLib
 PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing, double radius) {
   const int rings = virtual_rings(pattern);
   PeriodicPatch patch;
+  patch.repeat = {pattern.width(), pattern.height()};
   patch.tiles = 2 * rings + 3;
   patch.yarn = mesh::woven_yarn(pattern, patch.tiles, patch.tiles, spacing, radius);
   mesh::colour_woven_yarn(patch.yarn, pattern, patch.tiles, patch.tiles);  // before the frozen ends are cut off

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,16 +22,17 @@ struct PeriodicPatch {
   std::vector<int> ring;               ///< per point: its repeat's distance from the centre (0: real; 1 for a centre point that copies another across its edge)
   Eigen::Vector3d period_x, period_y;  ///< the repeat's offsets [mm]
   int tiles = 0;                       ///< repeats along each side, the dropped ring included
+  /// The patch's repeat in stitches (wales x courses): the pattern's, with its rows twice over when a knit has an
+  /// odd number of them. A tiling's rows alternate in direction (the yarn turns at the sides), so its yarn repeats
+  /// every two rows; a repeat of one row copied a row up would tie points of a left-going row to a right-going one.
+  std::array<int, 2> repeat{};
 };
 /// Knits and tiles (wovens: periodic_woven_patch): from the stitch mesh of the tiled pattern, emitted with `library`. A virtual point is
 /// matched to the centre point at its position less the repeat's offset; emitted points that match none
-/// (stitches at the borders) are frozen.
+/// (stitches at the borders) are frozen. A knit of an odd number of rows repeats twice up (PeriodicPatch::repeat).
 PeriodicPatch periodic_patch(const mesh::Pattern& pattern, const mesh::StitchLibrary& library, const mesh::StitchSize& size, double radius);
 /// Wovens: crossings `spacing` apart.
 PeriodicPatch periodic_woven_patch(const mesh::Pattern& pattern, double spacing, double radius);
-
-
-
 
 /// A tiled preview of a relaxed periodic patch: the yarn `tiled` of an N x M tiling of the same pattern
 /// (mesh::pattern_stitch_mesh and emission with the patch's library, size and radius), each point placed where

@@ -150,7 +150,9 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name,
   for (const auto& [type, factor] : stand_in.take_up_by_type)
     if (std::count(patch.yarn.type_names.begin(), patch.yarn.type_names.end(), type.substr(0, type.find(':')))) take_up_by_type[type] = factor;
   const auto system = relax::make_yarn_system(patch.yarn, stand_in.take_up, take_up_by_type, options.sampling);
-  const auto tiles = mesh::pattern_stitch_mesh(repeat, patch.tiles, patch.tiles, size);
+  // The patch's own repeat (an odd number of rows twice over) tiled as it was emitted.
+  const mesh::Pattern patch_repeat = patch.repeat[1] == repeat.height() ? repeat : mesh::stacked(repeat, 2);
+  const auto tiles = mesh::pattern_stitch_mesh(patch_repeat, patch.tiles, patch.tiles, size);
   // The forces the garment's relaxation feels: the patch-tracking ones too (the patch has no border loops).
   auto shape = options.shape;
   shape.boundary = false;
@@ -165,13 +167,13 @@ RelaxedRepeat relax_repeat(const mesh::Pattern& repeat, const std::string& name,
     if (patch.ring[p] == 0) drift += state.points.col(p) - system.points.col(p), ++real;
   if (real == 0) throw Error("", what, "the periodic patch has no real point");
   drift /= real;
-  // Each place's stitch in the middle repeat, the real one.
+  // Each place's stitch in the middle repeat, the real one (of a stacked repeat, its lower copy).
   const int middle = patch.tiles / 2;
   const int places = repeat.stitches();
   RelaxedRepeat out;
   const double nearby = 2 * (size.width + size.height);  // a cheap test before the frame's
   for (int place = 0; place < places; ++place) {
-    const int f = mesh::repeat_face(repeat, patch.tiles, middle, middle, place);
+    const int f = mesh::repeat_face(patch_repeat, patch.tiles, middle, middle, place);
     const Bilinear frame(tiles, f);
     const Vector3d centroid = frame.at(0.5, 0.5);
     std::vector<Vector3d> where, move;

@@ -1,5 +1,8 @@
 #include "woven/weave.hpp"
 
+#include <array>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -105,6 +108,17 @@ Weave detect_weave(const relax::YarnCurves& yarn, const std::vector<int>& warp_c
       w.set(i, j, heights->first > heights->second);
     }
   return w;
+}
+
+std::vector<int> picture_labels(const render::Image& image, int& colours) {
+  std::map<std::array<std::uint8_t, 3>, int> index;
+  std::vector<int> labels(static_cast<size_t>(image.width) * image.height);
+  for (size_t k = 0; k < labels.size(); ++k) {
+    const std::array<std::uint8_t, 3> c{image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]};
+    labels[k] = index.emplace(c, static_cast<int>(index.size())).first->second;
+  }
+  colours = static_cast<int>(index.size());
+  return labels;
 }
 
 }  // namespace skein::woven

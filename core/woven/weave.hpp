@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "relax/yarn_curves.hpp"
+#include "render/raster.hpp"
 #include "stitchmesh/pattern.hpp"
 
 namespace skein::woven {
@@ -33,6 +34,9 @@ Weave from_text(const std::string& text, const std::string& source);
 /// read) gives each pixel's colour index; colour c is woven with elementary weave `weaves[map[c]]`, repeated
 /// over the picture: W(x, y) = V_map(I(x, y))(x, y). The picture's bottom row becomes weft 0.
 Weave weave_from_labels(const std::vector<int>& labels, int width, int height, const std::vector<Weave>& weaves, const std::vector<int>& map);
+/// A posterized picture's labels for weave_from_labels: each pixel's colour index, colours numbered in the order
+/// they first appear (top row first); `colours` gets their count.
+std::vector<int> picture_labels(const render::Image& image, int& colours);
 
 /// The weave of relaxed woven yarn, found from the yarn itself (Zhao §6.2, the crossing order): at each
 /// crossing of warp j and weft i (where their projections onto the fabric plane meet), the warp is up when

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
 
 #include "common/error.hpp"
 #include "relax/periodic_map.hpp"
@@ -55,4 +58,35 @@ TEST(PeriodicMap, AScaledPeriodKeepsVirtualPointsOnTheirRealOnesAndTheYarnLength
   const auto run = relaxed(system, options, targets);
   EXPECT_TRUE(run.report.converged) << run.report.stopped_by;
   EXPECT_THROW(scale_period(targets.periodic, system.points, 0, 1), skein::Error);
+}
+
+// One repeat's yarn per stitch is the yarn of a stitch inside a large tiling: for a repeat of one row or three
+// (a flat tiling's rows alternate in direction, so the patch repeats them twice over), of two, and with the yarn
+// cut by a take-up, that share of it.
+TEST(PeriodicMap, ALoopLengthIsTheYarnOfAStitchInsideALargeTiling) {
+  const auto& library = mesh::StitchLibrary::bundled();
+  const auto stockinette = [](int wales, int courses) {
+    std::string rows = "format knit\n";
+    for (int r = 0; r < courses; ++r) {
+      for (int c = 0; c < wales; ++c) rows += "k ";
+      rows += "\n";
+    }
+    return mesh::parse_pattern(rows, "k.knit");
+  };
+  // A stitch inside a tiling: the yarn of 12 x 10 more stitches, edges and turns cancelled by differences.
+  const auto yarn_of = [&](int across, int up) {
+    mesh::EmitOptions emit;
+    emit.yarn_radius = 0.6;
+    const auto system = make_yarn_system(mesh::emit_yarn(mesh::pattern_stitch_mesh(stockinette(1, 1), across, up), library, emit));
+    double length = 0;
+    for (const double l : system.rest_length) length += l;
+    return length;
+  };
+  const double inside = (yarn_of(24, 20) - yarn_of(12, 20) - yarn_of(24, 10) + yarn_of(12, 10)) / (12 * 10);
+  for (const auto& [wales, courses] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{1, 2}, std::pair{2, 2}, std::pair{1, 3}}) {
+    const auto patch = periodic_patch(stockinette(wales, courses), library, {}, 0.6);
+    EXPECT_EQ(patch.repeat, (std::array<int, 2>{wales, courses % 2 ? 2 * courses : courses}));
+    EXPECT_NEAR(patch_loop_length(make_yarn_system(patch.yarn), patch.map, patch.repeat), inside, 1e-9 * inside) << wales << " x " << courses;
+    EXPECT_NEAR(patch_loop_length(make_yarn_system(patch.yarn, 0.8), patch.map, patch.repeat), 0.8 * inside, 1e-9 * inside);
+  }
 }

@@ -2,6 +2,10 @@
 // posterized into weaves, and the crossing order of woven yarn.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
+#include <vector>
+
 #include "common/error.hpp"
 #include "testing.hpp"
 #include "woven_fixtures.hpp"
@@ -52,4 +56,15 @@ TEST(Weave, TheCrossingOrderOfWovenYarnIsItsWeave) {
   for (int i = 0; i < 2 * pattern.height(); ++i) wefts.push_back(i);
   for (int j = 0; j < 2 * pattern.width(); ++j) warps.push_back(2 * pattern.height() + j);
   EXPECT_EQ(detect_weave(yarn, warps, wefts), tiled(from_pattern(pattern), 2 * pattern.width(), 2 * pattern.height()));
+}
+
+// A posterized picture's pixels get their colours' indices in the order the colours first appear, top row first.
+TEST(Weave, APicturesColoursAreNumberedInTheOrderTheyFirstAppear) {
+  render::Image image(3, 2);
+  const std::array<std::array<std::uint8_t, 3>, 6> pixels{{{9, 9, 9}, {200, 0, 0}, {9, 9, 9}, {0, 0, 255}, {200, 0, 0}, {0, 0, 255}}};
+  for (size_t k = 0; k < pixels.size(); ++k)
+    for (int c = 0; c < 3; ++c) image.rgb[3 * k + c] = pixels[k][c];
+  int colours = 0;
+  EXPECT_EQ(picture_labels(image, colours), (std::vector<int>{0, 1, 0, 2, 1, 2}));
+  EXPECT_EQ(colours, 3);
 }
