@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
       const auto periodic = relax_timed(relax::make_yarn_system(patch.yarn), options, targets);
       mesh::EmitOptions emit;
       emit.yarn_radius = r;
-      const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, n, n), library, emit);
+      const auto yarn = mesh::emit_yarn(mesh::pattern_stitch_mesh(pattern, n, n * patch.repeat[1] / pattern.height()), library, emit);
       const auto tiled = relax_timed(relax::make_yarn_system(yarn), options, {});
       const auto d = workflow::centre_repeat_difference(patch, periodic.state.points, yarn, tiled.state.points, n);
       std::printf("%s,%d,%zu,%ld,%.3f,%zu,%ld,%.3f,%.2f,%.4f,%.4f,%s\n", std::filesystem::path(argv[a]).stem().c_str(), d.points, patch.yarn.points.size(), periodic.report.steps,

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Does the model's knitted fabric have a curling moment and a bending stiffness? (issue 24; docs/BENCHMARKS.md
-# "Bent and let go"). Each swatch is emitted (`skein pattern --tiled`) and relaxed flat with free borders
+# "Bent and let go"). Each swatch is emitted (`skein pattern --tile`) and relaxed flat with free borders
 # (`skein relax-yarn`, L-BFGS, the force stop rule), then bent onto a cylinder of radius R (bench/bend_swatch.py)
 # along the courses (as when the side edges curl) and along the wales (as when the top and bottom curl), with the
 # knit side concave (front) or convex (back), and each bent swatch relaxed again from there. Every run takes its
@@ -47,7 +47,7 @@ for entry in "${entries[@]}"; do
     case $1 in --take-up) take_up=(--take-up "$2") ;; *) emit+=("$1" "$2") ;; esac
     shift 2
   done
-  "$skein" -q pattern "patterns/$p.knit" --tiled --tile "$tile" "${emit[@]}" -o "$tmp/emitted.bcc"
+  "$skein" -q pattern "patterns/$p.knit" --tile "$tile" "${emit[@]}" -o "$tmp/emitted.bcc"
   rest=(--rest-lengths "$tmp/emitted.bcc" "${take_up[@]}")
   # Relaxed flat, and relaxed again from there as each bent one is.
   "$skein" -q relax-yarn "$tmp/emitted.bcc" "${rest[@]}" "${relax[@]}" -o "$tmp/flat.bcc"

@@ -106,15 +106,16 @@ struct RelaxYarnCommand final : Subcommand {
     ry->add_flag("--no-boundary", ry_no_boundary, "no hard moment constraint on border loops (Yuksel eq. 5)");
     ry->add_flag("--no-patches", ry_no_patches, "no patch-tracking forces (Yuksel eqs. 6-7)");
     ry->add_flag("--no-audit", ry_no_audit, "skip the per-step topology audit (pull_through_events is then null)");
-    auto* active_set = ry->add_flag("--active-set", ry_options.active_set.enabled,
+    ry->add_flag("--active-set", ry_options.active_set.enabled,
                                     "converged points stop being integrated until their force grows or a neighbour moves (CPU only; the stop rule still sees every point)");
     const double wake_force = relax::ActiveSetOptions{}.wake_force;  // a sleeping point wakes above it: sleep below it
     ry->add_option("--sleep-force", ry_options.active_set.sleep_force,
-                   "with --active-set: a point sleeps below this × ε1 |∇E_0| / √N (under the wake force, " + std::to_string(static_cast<int>(wake_force)) + ")")
+                   "the active set's (--active-set, or a project's saved yarn.active_set): a point sleeps below this × ε1 |∇E_0| / √N (under the "
+                   "wake force, " + std::to_string(static_cast<int>(wake_force)) + ")")
         ->check(number_check(false, [wake_force](double x) { return x > 0 && x < wake_force; }, "(0, " + std::to_string(static_cast<int>(wake_force)) + ")"))
-        ->needs(active_set)->capture_default_str();
-    ry->add_option("--wake-move", ry_options.active_set.wake_move, "with --active-set: a sleeping point wakes when its neighbours moved this × r")
-        ->check(positive())->needs(active_set)->capture_default_str();
+        ->capture_default_str();
+    ry->add_option("--wake-move", ry_options.active_set.wake_move, "the active set's: a sleeping point wakes when its neighbours moved this × r")
+        ->check(positive())->capture_default_str();
     add_yarn_option(ry, "contact_spacing", ry_options.sampling.spacing);
     ry->add_option("--warm-start", ry_warm, "the relaxed yarn (.bcc) of --warm-project: start from it and relax only the stitches changed since, "
                                             "and --rings rings around them");
@@ -192,6 +193,9 @@ struct RelaxYarnCommand final : Subcommand {
       ry_radius_out = *fabric.radius;
       ry_radius = mesh::kYarnCompression * ry_radius_out;
     }
+    for (const char* flag : {"--sleep-force", "--wake-move"})
+      if (ry->count(flag) > 0 && !ry_options.active_set.enabled)
+        throw Error("", flag, "goes with the active set: give --active-set, or relax a project that saves yarn.active_set");
     ry_options.method = relax::parse_yarn_method(ry_method);
     ry_options.clipped_scale = ry_stop_scale == "clipped";
     ry_options.stop_rule = relax::parse_stop_rule(ry_stop_rule);

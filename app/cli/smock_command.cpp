@@ -33,7 +33,7 @@ struct SmockCommand final : Subcommand {
     smock->add_option("--cloth", sm.cloth, "the smocked fabric in 3-D (§4.2) as a triangle mesh (.obj, or glTF .glb/.gltf): a fine mesh guided to the lifted stitches, "
                       "never passing through itself, certified by an exact triangle test");
     smock->add_option("--cloth-png", sm.cloth_png, "picture of the 3-D fabric, from the front and from the side");
-    smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth: fine squares per side of a pattern square (even)")->capture_default_str();
+    smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth or --cloth-png: fine squares per side of a pattern square (even)")->capture_default_str();
     smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(in_range(1e-6, 1.0));
     smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
         ->check(in_range(1e-6, 1e4));

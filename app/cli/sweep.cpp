@@ -1,5 +1,6 @@
 #include "sweep.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -69,6 +70,8 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   option("max_seconds", "--max-seconds", number_text(k.option("max_seconds", 0)));
   option("tolerance", "--tolerance", number_text(k.option("tolerance", 0)));
   option("force_tolerance", "--force-tolerance", number_text(k.option("force_tolerance", 0)));
+  if (k.has("period_tolerance") && std::find(args.begin(), args.end(), "--free-period") == args.end())
+    k.fail(k.name("period_tolerance"), "is the free period's stop rule: give free_period too");
   option("period_tolerance", "--period-tolerance", number_text(k.number("period_tolerance", 0, 0, 1e6)));
   if (!k.flag("audit", true)) args.push_back("--no-audit");
   option("k_bend", "--k-bend", number_text(k.option("k_bend", 0)));
@@ -108,6 +111,7 @@ json case_row(const SweepCase& c, const std::string& label, int rank, int status
     const json& p = report[period];
     row["period"] = period == std::string("free_period") ? "free" : "fixed";
     for (const char* key : {"repeat_mm", "repeat_energy", "loop_length_mm", "Kc", "Kw", "rows_apart"}) row[key] = p.value(key, json(nullptr));
+    if (report.contains("periodic")) row["repeat"] = report["periodic"].value("repeat", json(nullptr));  // the relaxed repeat's stitches
     if (p.contains("gauge_per_10cm")) row["stitches_per_10cm"] = p["gauge_per_10cm"]["stitches"], row["rows_per_10cm"] = p["gauge_per_10cm"]["rows"];
     if (p.contains("against_asked")) row["stitches_against_gauge"] = p["against_asked"]["stitches"];  // the relaxed over the yarn's or given gauge
   }

@@ -49,7 +49,8 @@ TiledPreview tile_relaxed_patch(const PeriodicPatch& patch, const Eigen::Matrix3
                                 const Eigen::Vector2d& period_scale = {1, 1}, const Eigen::Matrix<double, 3, 2>* period = nullptr);
 
 /// The periodic patch's relaxed real points against the matching points of the relaxed centre repeat of an
-/// n × n tiling of the same pattern (its stitch mesh from mesh::pattern_stitch_mesh(pattern, n, n), emitted
+/// n × n tiling of the patch's repeat (its stitch mesh from mesh::pattern_stitch_mesh(pattern, n, n × the patch's
+/// rows over the pattern's: PeriodicPatch::repeat), emitted
 /// with the same library and radius), the common translation removed. Points are matched where they were
 /// emitted: the tiling's repeat ((n − 1)/2, (n − 1)/2) sits where the patch's centre repeat does, less an
 /// offset. Throws skein::Error when a real point has no match (the two were not emitted alike).

@@ -65,7 +65,7 @@ TEST(Job, YarnOptionsHaveTheRangesTheCommandLineGivesThem) {
            {"pattern " + kPatterns + "/seed.knit --png-size abc --png p.png", "--png-size: expected a whole number, found abc"},
            {"pattern " + kPatterns + "/seed.knit --png-size 10 --png p.png", "--png-size: must be in [64, 4096], found 10"},
            {"pattern " + kPatterns + "/seed.knit --relax --gamma 9", "--gamma: must be in [0.25, 4], found 9"},
-           {"relax-yarn none.bcc --sleep-force 1", "--sleep-force requires --active-set"},
+           {"relax-yarn none.bcc --sleep-force 1", "--sleep-force: goes with the active set"},
            {"relax-yarn none.bcc --active-set --wake-move -3", "--wake-move: expected a positive number, found -3"}}) {
     r = run_skein(args + " -o " + (dir / "x.bcc").string());
     EXPECT_EQ(r.status, 2) << args;

@@ -53,6 +53,7 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "take_up": [0]})", "key 'take_up': expected numbers in [0.1, 10] (as --take-up)"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
+           {R"({"patterns": [")" + stock + R"("], "relax": {"period_tolerance": 0.01}})", "key 'relax.period_tolerance': is the free period's stop rule"},
            {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
            {R"({"patterns": [")" + stock + R"("], "gamma": [1E400]})", "number overflow"},  // found by CI's fuzzing
        }) {

@@ -25,7 +25,9 @@ TiledPreview tiled_relaxed_patch(const mesh::Pattern& pattern, const mesh::Stitc
   const auto system = make_yarn_system(patch.yarn, take_up, take_up_by_type);
   auto shape = options.shape;
   shape.boundary = false;
-  ShapeTargets targets = shape_targets(mesh::pattern_stitch_mesh(pattern, patch.tiles, patch.tiles, size), patch.yarn, shape);
+  // The patch's own repeat (an odd number of rows twice over) tiled as it was emitted, for its faces.
+  const auto patch_repeat = patch.repeat[1] == pattern.height() ? pattern : mesh::stacked(pattern, 2);
+  ShapeTargets targets = shape_targets(mesh::pattern_stitch_mesh(patch_repeat, patch.tiles, patch.tiles, size), patch.yarn, shape);
   targets.periodic = patch.map;
   YarnState state = initial_state(system, options);
   make_cpu_yarn_relaxer(system, targets, options)->run(state);
