@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -385,31 +386,46 @@ TEST(YarnStopRule, AForceConvergedRunLosesUnderOnePercentMoreWhenContinued) {
   EXPECT_THROW(parse_stop_rule("relative"), skein::Error);
 }
 
+namespace {
+// skein pattern TEXT --relax --free-period x --no-audit --take-up T --period STARTx1: the run, and the repeat's
+// width per wale.
+std::pair<YarnRelaxReport, double> width_under_tension(const std::string& text, double take_up, double start) {
+  const auto pattern = mesh::parse_pattern(text, "test.knit");
+  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  auto system = make_yarn_system(patch.yarn, take_up);
+  ShapeTargets targets;
+  targets.periodic = patch.map;
+  scale_period(targets.periodic, system.points, start, 1);
+  YarnRelaxOptions options;
+  options.method = YarnMethod::Lbfgs;
+  options.stop_rule = StopRule::Force;
+  options.audit = false;
+  options.max_steps = 30000;
+  options.period.free = true;
+  options.period.free_y = false;
+  auto state = initial_state(system, options);
+  const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
+  EXPECT_TRUE(run.converged) << text << ": " << run.stopped_by;
+  return {run, run.period(0, 0) / pattern.width()};
+}
+}  // namespace
+
 // Issue 24's test of a stress-free width: two starts, 0.85 and 1.15 times the emitted width, end at one width.
 // Stockinette's yarn as emitted (6 x 5 mm stitches, r = 0.6 mm) has none: its free width ends where it starts,
 // 26.7 % apart. With its yarn 20 % shorter (a take-up of 0.8) the loops close on each other and the width is the
 // fabric's: 4.97 mm a wale from every start, Kw 4.35 (docs/BENCHMARKS.md, "Odd rows relaxed twice over").
 TEST(YarnCell, YarnUnderTensionFindsOneWidthFromEveryStart) {
-  const auto width_from = [](double start) {
-    auto patch = periodic_patch(mesh::parse_pattern("format knit\nk\n", "test.knit"), mesh::StitchLibrary::bundled(), {}, 0.6);
-    auto system = make_yarn_system(patch.yarn, 0.8);
-    ShapeTargets targets;
-    targets.periodic = patch.map;
-    scale_period(targets.periodic, system.points, start, 1);
-    YarnRelaxOptions options;  // skein pattern --relax --free-period x --no-audit
-    options.method = YarnMethod::Lbfgs;
-    options.stop_rule = StopRule::Force;
-    options.audit = false;
-    options.max_steps = 30000;
-    options.period.free = true;
-    options.period.free_y = false;
-    auto state = initial_state(system, options);
-    const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-    EXPECT_TRUE(run.converged) << run.stopped_by;
-    return run.period(0, 0);
-  };
-  const double narrow = width_from(0.85), wide = width_from(1.15);
+  const double narrow = width_under_tension("format knit\nk\n", 0.8, 0.85).second, wide = width_under_tension("format knit\nk\n", 0.8, 1.15).second;
   std::printf("stockinette at a take-up of 0.8: %.3f and %.3f mm a wale from 0.85 and 1.15 of the emitted width\n", narrow, wide);
   EXPECT_NEAR(narrow, wide, 0.01 * wide);
   EXPECT_LT(wide, 0.9 * 6.0);  // narrower than emitted: the shorter yarn pulls the loops in
+}
+
+// Under the same tension a 1x1 rib's knit wales close over its purl ones: at a take-up of 0.7 it is 0.53 here
+// (0.53 to 0.61 from other starts) of stockinette's width a wale, 4.04 mm, where at 1 it is as wide
+// (docs/BENCHMARKS.md, "Odd rows relaxed twice over").
+TEST(YarnCell, ARibUnderTensionIsNarrowerThanStockinette) {
+  const double plain = width_under_tension("format knit\nk\n", 0.7, 1).second, rib = width_under_tension("format knit\nk p\n", 0.7, 1).second;
+  std::printf("at a take-up of 0.7: stockinette %.3f mm a wale, 1x1 rib %.3f (%.3f)\n", plain, rib, rib / plain);
+  EXPECT_LT(rib, 0.8 * plain);
 }
