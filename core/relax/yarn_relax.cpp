@@ -468,7 +468,7 @@ public:
         report.first_residual_peak = peak_share(grad);
         if (m_options.clipped_scale)
           spdlog::info("stop rule's scale: |∇E_0| with the largest 0.1 % of the forces clipped, {:.3g} of its whole value", state.residual0 / residual);
-        else if (report.first_residual_peak > 0.5) {
+        else if (m_options.stop_rule == StopRule::Leaf && report.first_residual_peak > 0.5) {  // the force rule's scale is absolute
           Eigen::Index largest;
           grad.colwise().squaredNorm().maxCoeff(&largest);
           const Eigen::Vector3d at = state.points.col(largest);

@@ -14,6 +14,7 @@
 #include "relax/yarn_cell.hpp"
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_relax.hpp"
+#include "open_area.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -387,14 +388,21 @@ TEST(YarnStopRule, AForceConvergedRunLosesUnderOnePercentMoreWhenContinued) {
 }
 
 namespace {
-// skein pattern TEXT --relax --free-period x --no-audit --take-up T --period STARTx1: the run, and the repeat's
-// width per wale.
-std::pair<YarnRelaxReport, double> width_under_tension(const std::string& text, double take_up, double start) {
+// skein pattern TEXT --relax --free-period x --no-audit --take-up T --period STARTx1: the run, the repeat's width
+// per wale, and the patch and its relaxed points.
+struct TensionRun {
+  YarnRelaxReport run;
+  double wale = 0;
+  PeriodicPatch patch;
+  Eigen::Matrix3Xd points;
+};
+TensionRun relaxed_under_tension(const std::string& text, double take_up, double start) {
   const auto pattern = mesh::parse_pattern(text, "test.knit");
-  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
-  auto system = make_yarn_system(patch.yarn, take_up);
+  TensionRun out;
+  out.patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  auto system = make_yarn_system(out.patch.yarn, take_up);
   ShapeTargets targets;
-  targets.periodic = patch.map;
+  targets.periodic = out.patch.map;
   scale_period(targets.periodic, system.points, start, 1);
   YarnRelaxOptions options;
   options.method = YarnMethod::Lbfgs;
@@ -404,10 +412,13 @@ std::pair<YarnRelaxReport, double> width_under_tension(const std::string& text, 
   options.period.free = true;
   options.period.free_y = false;
   auto state = initial_state(system, options);
-  const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  EXPECT_TRUE(run.converged) << text << ": " << run.stopped_by;
-  return {run, run.period(0, 0) / pattern.width()};
+  out.run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
+  EXPECT_TRUE(out.run.converged) << text << ": " << out.run.stopped_by;
+  out.wale = out.run.period(0, 0) / pattern.width();
+  out.points = state.points;
+  return out;
 }
+double wale_under_tension(const std::string& text, double take_up, double start) { return relaxed_under_tension(text, take_up, start).wale; }
 }  // namespace
 
 // Issue 24's test of a stress-free width: two starts, 0.85 and 1.15 times the emitted width, end at one width.
@@ -415,7 +426,7 @@ std::pair<YarnRelaxReport, double> width_under_tension(const std::string& text, 
 // 26.7 % apart. With its yarn 20 % shorter (a take-up of 0.8) the loops close on each other and the width is the
 // fabric's: 4.97 mm a wale from every start, Kw 4.35 (docs/BENCHMARKS.md, "Odd rows relaxed twice over").
 TEST(YarnCell, YarnUnderTensionFindsOneWidthFromEveryStart) {
-  const double narrow = width_under_tension("format knit\nk\n", 0.8, 0.85).second, wide = width_under_tension("format knit\nk\n", 0.8, 1.15).second;
+  const double narrow = wale_under_tension("format knit\nk\n", 0.8, 0.85), wide = wale_under_tension("format knit\nk\n", 0.8, 1.15);
   std::printf("stockinette at a take-up of 0.8: %.3f and %.3f mm a wale from 0.85 and 1.15 of the emitted width\n", narrow, wide);
   EXPECT_NEAR(narrow, wide, 0.01 * wide);
   EXPECT_LT(wide, 0.9 * 6.0);  // narrower than emitted: the shorter yarn pulls the loops in
@@ -425,7 +436,20 @@ TEST(YarnCell, YarnUnderTensionFindsOneWidthFromEveryStart) {
 // (0.53 to 0.61 from other starts) of stockinette's width a wale, 4.04 mm, where at 1 it is as wide
 // (docs/BENCHMARKS.md, "Odd rows relaxed twice over").
 TEST(YarnCell, ARibUnderTensionIsNarrowerThanStockinette) {
-  const double plain = width_under_tension("format knit\nk\n", 0.7, 1).second, rib = width_under_tension("format knit\nk p\n", 0.7, 1).second;
+  const double plain = wale_under_tension("format knit\nk\n", 0.7, 1), rib = wale_under_tension("format knit\nk p\n", 0.7, 1);
   std::printf("at a take-up of 0.7: stockinette %.3f mm a wale, 1x1 rib %.3f (%.3f)\n", plain, rib, rib / plain);
   EXPECT_LT(rib, 0.8 * plain);
+}
+
+// Lace opens under tension (issue 24: "eyelets: each hole's largest empty disc at least 3 times stockinette's").
+// Eyelet columns (a yo and a k2tog every other row, patterns/charts/eyelet-columns.txt) relaxed with a free width
+// at a take-up of 0.8: the yarn-over's hole is 2.3 times stockinette's largest gap at the same tension, where at
+// a take-up of 1 it is 1.05 times (docs/BENCHMARKS.md, "Structures under tension").
+TEST(YarnCell, EyeletsOpenUnderTension) {
+  const auto plain = relaxed_under_tension("format knit\nk\n", 0.8, 1);
+  const auto eyelets = relaxed_under_tension("format chart\n. . . .   4\n. / o .   3\n. . . .   2\n. / o .   1\n", 0.8, 1);
+  const double gap = skein::testing::largest_open_disc(plain.patch.yarn, plain.points, 0.12);
+  const double hole = skein::testing::largest_open_disc(eyelets.patch.yarn, eyelets.points, 0.12);
+  std::printf("at a take-up of 0.8: stockinette's largest gap %.2f mm, the eyelet's %.2f mm (%.2f times)\n", gap, hole, hole / gap);
+  EXPECT_GT(hole, 2 * gap);
 }
