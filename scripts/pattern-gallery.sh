@@ -3,7 +3,8 @@
 # about 12 x 12 stitches (--preview-png) and drawn from the front into docs/images/patterns/; then the corpus in
 # designers' notation (patterns/written, charts, wif) the same way into docs/images/corpus/; then the fabrics
 # issue 24 asks to see side by side relaxed by today's defaults and drawn front, back and three-quarter
-# (--views three) into docs/images/fabrics/. Run after scripts/build.sh; about ten minutes on 2 cores.
+# (--views three) into docs/images/fabrics/, and again under tension (--take-up 0.8, the width free). Run after
+# scripts/build.sh; about twenty minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 skein=build/bin/skein
@@ -82,5 +83,26 @@ for name in stockinette garter rib-1x1 rib-2x2 seed cable-4 eyelet-lace honeycom
   "$skein" -q pattern "patterns/$name.knit" --relax --tile 4x4 --preview-png "docs/images/fabrics/$name.png" --views three --png-size 450 \
     -o "$tmp/out.bcc" --report "$tmp/r.json"
   python3 -c "import json; r = json.load(open('$tmp/r.json')); print(f\"| \`$name\` | {r['stopped_by']} | {r['steps']} | ![$name, front, back and three-quarter](images/fabrics/$name.png) |\")" >>"$page"
+done
+{
+  echo
+  echo "## Under tension (issue 24)"
+  echo
+  echo "The same fabrics, lace and feather and fan with the yarn 20 % shorter than emitted and the width free"
+  echo "(\`skein pattern FILE --relax --free-period x --take-up 0.8\`), tiled and drawn front, back and three-quarter as above."
+  echo "Under tension stockinette finds one width from every start, the ribs come in (slowly: after 20,000 steps from their emitted"
+  echo "width these are still narrowing), the yarn-overs open, the fan's rows"
+  echo "arch and the cable's strands lean (docs/BENCHMARKS.md, \"Structures under tension\"); many of these runs stop at their"
+  echo "step cap with the width still creeping in."
+  echo
+  echo "| pattern | stopped | steps | repeat's width | picture |"
+  echo "| --- | --- | --- | --- | --- |"
+} >>"$page"
+for spec in stockinette.knit:4x4 garter.knit:4x4 rib-1x1.knit:6x4 rib-2x2.knit:3x4 seed.knit:3x4 written/rope-cable.txt:2x3 \
+  written/eyelet-rows.txt:3x3 charts/lace-rib.txt:3x6 written/feather-and-fan.txt:1x3 honeycomb.knit:3x3; do
+  f=patterns/${spec%:*} name=$(basename "${f%.*}")
+  "$skein" -q pattern "$f" --relax --free-period x --take-up 0.8 --tile "${spec#*:}" --preview-png "docs/images/fabrics/$name-tension.png" \
+    --views three --png-size 450 -o "$tmp/out.bcc" --report "$tmp/r.json"
+  python3 -c "import json; r = json.load(open('$tmp/r.json')); print(f\"| \`$f\` | {r['stopped_by']} | {r['steps']} | {r['free_period']['repeat_mm'][0]:.1f} mm | ![$name under tension, front, back and three-quarter](images/fabrics/$name-tension.png) |\")" >>"$page"
 done
 echo "wrote $page, $images/ and docs/images/fabrics/"

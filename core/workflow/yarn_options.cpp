@@ -173,7 +173,7 @@ std::vector<YarnOption> make_options() {
                    [](YarnSettings& s) -> double& { return s.relax.params.k_dt; }));
   o.push_back(real("k_dn", 0, kStiffness, "", "normal contact damping (Leaf eq. 12), Euler only", false,
                    [](YarnSettings& s) -> double& { return s.relax.params.k_dn; }));
-  o.push_back(real("take_up", 0.1, 10, "", "rest length of the yarn × its emitted length: below 1 the yarn pulls tighter", true,
+  o.push_back(real("take_up", 0.1, 10, "", "rest length of the yarn × its emitted length: below 1 the yarn pulls tighter (0.8: fabric under tension, where lace opens and ribs come in)", true,
                    [](YarnSettings& s) -> double& { return s.take_up; }));
   std::vector<std::string> weights{"none"};
   for (const auto& w : mesh::yarn_weights()) weights.push_back(w.name);
