@@ -11,7 +11,7 @@
 # Usage: bench/tension_runs.sh [TAKE_UP...]   (default 1 0.8; prints one markdown row per case; about 25 minutes
 # on the 2-core machine, a run at a time)
 source "$(dirname "$0")/common.sh"
-takes=("${@:-1}")
+takes=("$@")
 [ $# -eq 0 ] && takes=(1 0.8)
 cap=40000
 relax() {  # relax NAME PATTERN TAKE_UP ARGS...: a free-width relaxation, its report in $tmp/NAME.json
@@ -34,6 +34,7 @@ echo "| --- | --- | --- | --- | --- | --- | --- |"
 for t in "${takes[@]}"; do
   relax st-$t patterns/stockinette.knit "$t" --tile 4x4 --preview "$tmp/st-pv-$t.bcc"
   gap=$(python3 bench/open_area.py "$tmp/st-pv-$t.bcc" 0.2 | cut -d, -f1)
+  echo "| stockinette | $t | largest gap [mm] | $gap | | | $(outcome "$tmp/st-$t.json") |"
   for p in patterns/written/eyelet-rows.txt patterns/charts/eyelet-columns.txt patterns/charts/lace-rib.txt patterns/eyelet-lace.knit; do
     n=$(basename "${p%.*}")
     relax "$n-$t" "$p" "$t" --tile 4x4 --preview "$tmp/$n-pv-$t.bcc"

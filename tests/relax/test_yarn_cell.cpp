@@ -389,17 +389,17 @@ TEST(YarnStopRule, AForceConvergedRunLosesUnderOnePercentMoreWhenContinued) {
 
 namespace {
 // skein pattern TEXT --relax --free-period x --no-audit --take-up T --period STARTx1: the run, the repeat's width
-// per wale, and the patch and its relaxed points.
+// per wale, and the patch and its relaxed points; `radius` is the yarn's (--yarn-radius).
 struct TensionRun {
   YarnRelaxReport run;
   double wale = 0;
   PeriodicPatch patch;
   Eigen::Matrix3Xd points;
 };
-TensionRun relaxed_under_tension(const std::string& text, double take_up, double start) {
+TensionRun relaxed_under_tension(const std::string& text, double take_up, double start, double radius = 0.6) {
   const auto pattern = mesh::parse_pattern(text, "test.knit");
   TensionRun out;
-  out.patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  out.patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, radius);
   auto system = make_yarn_system(out.patch.yarn, take_up);
   ShapeTargets targets;
   targets.periodic = out.patch.map;
@@ -418,7 +418,9 @@ TensionRun relaxed_under_tension(const std::string& text, double take_up, double
   out.points = state.points;
   return out;
 }
-double wale_under_tension(const std::string& text, double take_up, double start) { return relaxed_under_tension(text, take_up, start).wale; }
+double wale_under_tension(const std::string& text, double take_up, double start, double radius = 0.6) {
+  return relaxed_under_tension(text, take_up, start, radius).wale;
+}
 }  // namespace
 
 // Issue 24's test of a stress-free width: two starts, 0.85 and 1.15 times the emitted width, end at one width.
@@ -452,4 +454,15 @@ TEST(YarnCell, EyeletsOpenUnderTension) {
   const double hole = skein::testing::largest_open_disc(eyelets.patch.yarn, eyelets.points, 0.12);
   std::printf("at a take-up of 0.8: stockinette's largest gap %.2f mm, the eyelet's %.2f mm (%.2f times)\n", gap, hole, hole / gap);
   EXPECT_GT(hole, 2 * gap);
+}
+
+// Doyle (1953) under tension: relaxed plain knit's stitch width follows its loop, not its yarn. Stockinette at a
+// take-up of 0.8 with yarn of radius 0.5 and 0.6 mm (loops 20.96 and 21.60 mm), started at 0.85 and 1.15 of the
+// emitted width, ends 4.974 and 4.968 mm a wale (docs/BENCHMARKS.md, "Structures under tension"); at a take-up of
+// 1 the width stays where it starts, so only under tension is this a test.
+TEST(YarnCell, UnderTensionTheStitchWidthFollowsTheLoopNotTheYarn) {
+  const double thin = wale_under_tension("format knit\nk\n", 0.8, 0.85, 0.5), thick = wale_under_tension("format knit\nk\n", 0.8, 1.15, 0.6);
+  std::printf("stockinette at a take-up of 0.8: %.3f mm a wale at r = 0.5 mm, %.3f at 0.6\n", thin, thick);
+  EXPECT_NEAR(thin / thick, 1.0, 0.1);
+  EXPECT_LT(thick, 0.9 * 6.0);  // pulled in from its start at 6.9 mm: the two starts were 35 % apart
 }

@@ -1,6 +1,8 @@
 #pragma once
 // The largest hole a fabric's yarn leaves, seen from the front (issue 24: "eyelets: each hole's largest empty
-// disc at least 3 times stockinette's"): the same measure as bench/open_area.py, for yarn in memory.
+// disc at least 3 times stockinette's"): bench/open_area.py's measure for yarn in memory, with distances taken to
+// the spline's samples (open_area.py: to the segments between them; within 0.01 mm on an eyelet preview). On a
+// periodic patch the middle half of its extent lies inside the ring of copies around the real repeat.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,6 +22,7 @@ inline double largest_open_disc(const relax::YarnCurves& yarn, const Eigen::Matr
   std::vector<Eigen::Vector2d> samples;
   for (int c = 0; c < yarn.curves(); ++c) {
     const int first = yarn.curve_start[c], n = yarn.curve_size(c);
+    if (n == 0) continue;
     const auto at = [&](int i) -> Eigen::Vector2d { return points.col(first + std::clamp(i, 0, n - 1)).head<2>(); };
     for (int i = 0; i + 1 < n; ++i)
       for (int k = 0; k < 8; ++k) {
