@@ -99,7 +99,7 @@ json read_report(const fs::path& path) {
 /// The row of one case: what it asked and what its report says.
 json case_row(const SweepCase& c, const std::string& label, int rank, int status, const json& report) {
   json row = {{"case", c.index}, {"label", label}, {"pattern", c.pattern.string()}, {"yarn", c.yarn}, {"gauge", c.gauge.empty() ? json(nullptr) : json(c.gauge)},
-              {"gamma", c.gamma}, {"take_up", c.take_up}, {"rank", rank}, {"exit_status", status}};
+              {"gamma", c.gamma}, {"take_up", c.take_up}, {"width", c.width}, {"rank", rank}, {"exit_status", status}};
   if (report.is_null()) {
     row["stopped_by"] = status == -1 ? "not run" : "failed";
     return row;
@@ -110,7 +110,7 @@ json case_row(const SweepCase& c, const std::string& label, int rank, int status
     if (!report.contains(period)) continue;
     const json& p = report[period];
     row["period"] = period == std::string("free_period") ? "free" : "fixed";
-    for (const char* key : {"repeat_mm", "repeat_energy", "loop_length_mm", "Kc", "Kw", "rows_apart"}) row[key] = p.value(key, json(nullptr));
+    for (const char* key : {"repeat_mm", "repeat_energy", "stress_over_bending", "loop_length_mm", "Kc", "Kw", "rows_apart"}) row[key] = p.value(key, json(nullptr));
     if (report.contains("periodic")) row["repeat"] = report["periodic"].value("repeat", json(nullptr));  // the relaxed repeat's stitches
     if (p.contains("gauge_per_10cm")) row["stitches_per_10cm"] = p["gauge_per_10cm"]["stitches"], row["rows_per_10cm"] = p["gauge_per_10cm"]["rows"];
     if (p.contains("against_asked")) row["stitches_against_gauge"] = p["against_asked"]["stitches"];  // the relaxed over the yarn's or given gauge
@@ -135,7 +135,7 @@ std::string csv_field(const json& v) {
   return v.dump();
 }
 
-const std::vector<std::string> kCsvColumns = {"case", "label", "rank", "stopped_by", "converged", "steps", "wall_seconds", "energy", "force_residual",
+const std::vector<std::string> kCsvColumns = {"case", "label", "width", "rank", "stopped_by", "converged", "steps", "wall_seconds", "energy", "repeat_energy", "stress_over_bending", "force_residual",
                                               "pull_through_events", "repeat_mm", "stitches_per_10cm", "stitches_against_gauge", "rows_per_10cm", "Kw", "Kc",
                                               "loop_length_mm"};
 
@@ -147,11 +147,11 @@ bool draw_chart(const Sweep& sweep, const std::vector<json>& rows, const fs::pat
     return false;
   }
   bool gauge = false;
-  for (const auto& r : rows) gauge |= r.contains("stitches_per_10cm");
+  for (const auto& r : rows) gauge |= r.value("period", "") == "free";  // a fixed period's gauge is the one imposed
   // Each bar is named by what varies in the sweep.
   std::map<std::string, std::set<std::string>> values;
   for (const auto& r : rows)
-    for (const char* key : {"pattern", "yarn", "gauge", "gamma", "take_up"}) values[key].insert(r[key].dump());
+    for (const char* key : {"pattern", "yarn", "gauge", "gamma", "take_up", "width"}) values[key].insert(r.value(key, json(nullptr)).dump());
   const auto short_label = [&](const json& r) {
     std::string s;
     const auto add = [&](const char* key, const std::string& text) {
@@ -162,6 +162,7 @@ bool draw_chart(const Sweep& sweep, const std::vector<json>& rows, const fs::pat
     add("gauge", r["gauge"].is_string() ? "gauge " + r["gauge"].get<std::string>() : "default gauge");
     add("gamma", "gamma " + number_text(r["gamma"].get<double>()));
     add("take_up", "take-up " + number_text(r["take_up"].get<double>()));
+    add("width", "width " + number_text(r.value("width", 1.0)));
     return s.empty() ? std::to_string(r["case"].get<int>()) : s;
   };
   char dir_template[] = "/tmp/skein-sweep-XXXXXX";
@@ -180,10 +181,13 @@ bool draw_chart(const Sweep& sweep, const std::vector<json>& rows, const fs::pat
       << "set output '" << out.string() << "'\nset multiplot layout 2,1 title '" << sweep.name << ": " << rows.size() << " cases'\n"
       << "set style fill solid 0.8\nset boxwidth 0.7\nset grid ytics\nunset key\nset xtics rotate by -40 left\n"
       << "set palette defined (0 '#4477aa', 1 '#ee6677', 2 '#228833', 3 '#ccbb44', 4 '#66ccee', 5 '#aa3377', 6 '#bbbbbb', 7 '#000000')\n"
-      << "set cbrange [0:7]\nunset colorbox\nset bmargin 7\nset yrange [0:*]\n"
-      << "set ylabel '" << (gauge ? "stitches per 10 cm (free period)" : "one repeat's energy") << "'\n"
-      << "plot '" << data.string() << "' using 1:3:5:xtic(2) with boxes lc palette\n"
-      << "set ylabel 'seconds (colour: rank)'\nplot '" << data.string() << "' using 1:4:5:xtic(2) with boxes lc palette\nunset multiplot\n";
+      << "set cbrange [0:7]\nunset colorbox\nset bmargin 7\n"
+      // A gauge as bars from 0; energies, which differ by tenths of a percent across a scan of widths, as points on
+      // an axis of their own range.
+      << (gauge ? "set yrange [0:*]\nset ylabel 'stitches per 10 cm (free period)'\nplot '" + data.string() + "' using 1:3:5:xtic(2) with boxes lc palette\n"
+                : "set yrange [*:*]\nset offsets 0.5, 0.5, 0, 0\nset ylabel 'energy of one repeat (fixed period)'\nplot '" + data.string() +
+                      "' using 1:3:5:xtic(2) with points pt 7 ps 1.5 lc palette\n")
+      << "set offsets 0, 0, 0, 0\nset yrange [0:*]\nset ylabel 'seconds (colour: rank)'\nplot '" << data.string() << "' using 1:4:5:xtic(2) with boxes lc palette\nunset multiplot\n";
   }
   const bool ok = std::system(("gnuplot '" + script.string() + "' 2>" + (dir / "gnuplot.err").string()).c_str()) == 0 && fs::exists(out);
   if (ok) {
@@ -205,13 +209,14 @@ std::string SweepCase::label() const {
   if (yarn.is_number()) s += "-r" + number_text(yarn.get<double>());
   if (!gauge.empty()) s += "-gauge-" + gauge;
   s += "-gamma-" + number_text(gamma) + "-take-up-" + number_text(take_up);
+  if (width != 1) s += "-width-" + number_text(width);
   return slug(s);
 }
 
 Sweep parse_sweep(const std::string& text, const fs::path& file) {
   const json j = parse_user_json(text, file);
   const Keys k(j, "", file);
-  k.only({"name", "patterns", "yarns", "gauges", "gamma", "take_up", "relax", "threads", "pictures", "output"});
+  k.only({"name", "patterns", "yarns", "gauges", "gamma", "take_up", "widths", "relax", "threads", "pictures", "output"});
   Sweep s;
   s.file = file;
   s.name = k.text("name", file.stem().string());
@@ -254,6 +259,7 @@ Sweep parse_sweep(const std::string& text, const fs::path& file) {
   const auto& take_up = workflow::yarn_option("take_up");  // the schema's range, as --take-up's
   const auto gammas = numbers(k, "gamma", relax::kMinGamma, relax::kMaxGamma, "--gamma"),
              take_ups = numbers(k, "take_up", take_up.low, take_up.high, take_up.flag());
+  const auto widths = numbers(k, "widths", 0.1, 10, "--period's width");
   if (k.has("relax")) s.relax_arguments = relax_arguments(Keys(k.at("relax"), "relax", file));
   s.threads = static_cast<int>(k.integer("threads", 1, 1, 1024));
   s.pictures = k.flag("pictures", true);
@@ -262,7 +268,8 @@ Sweep parse_sweep(const std::string& text, const fs::path& file) {
     for (const auto& y : yarns)
       for (const auto& g : gauges)
         for (double gamma : gammas)
-          for (double t : take_ups) s.cases.push_back({static_cast<int>(s.cases.size()), p, y, g, gamma, t});
+          for (double t : take_ups)
+            for (double w : widths) s.cases.push_back({static_cast<int>(s.cases.size()), p, y, g, gamma, t, w});
   if (s.cases.size() > 100000) k.fail("patterns", std::to_string(s.cases.size()) + " cases: more than 100,000");
   return s;
 }
@@ -291,6 +298,7 @@ std::vector<std::string> case_command(const Sweep& sweep, const SweepCase& c, co
   if (c.yarn.is_number()) args.insert(args.end(), {"--yarn-radius", number_text(c.yarn.get<double>())});
   if (!c.gauge.empty()) args.insert(args.end(), {"--gauge", c.gauge});
   args.insert(args.end(), {"--gamma", number_text(c.gamma), "--take-up", number_text(c.take_up)});
+  if (c.width != 1) args.insert(args.end(), {"--period", number_text(c.width) + "x1"});
   args.insert(args.end(), sweep.relax_arguments.begin(), sweep.relax_arguments.end());
   if (sweep.pictures) args.insert(args.end(), {"--preview-png", (folder / "preview.png").string(), "--png-size", "400"});
   return args;

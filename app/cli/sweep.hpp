@@ -18,6 +18,7 @@ struct SweepCase {
   nlohmann::json yarn;   ///< a weight class name (--yarn), a radius in mm (--yarn-radius), or null: the default
   std::string gauge;     ///< "S" or "SxR" stitches (x rows) per 10 cm (--gauge); empty: the yarn's or the default
   double gamma = 1, take_up = 1;
+  double width = 1;      ///< the repeat's width × its emitted width (--period Wx1): fixed, or a free period's start
 
   /// Names the case in logs, tables and its folder: "003-rib-2x2-dk-gauge-22x28-gamma-1-take-up-0.9".
   std::string label() const;

@@ -51,6 +51,7 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "yarns": [-1]})", "key 'yarns': expected a yarn weight"},
            {R"({"patterns": [")" + stock + R"("], "gauges": ["many"]})", "key 'gauges'"},
            {R"({"patterns": [")" + stock + R"("], "take_up": [0]})", "key 'take_up': expected numbers in [0.1, 10] (as --take-up)"},
+           {R"({"patterns": [")" + stock + R"("], "widths": [0.05]})", "key 'widths': expected numbers in [0.1, 10] (as --period's width)"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"period_tolerance": 0.01}})", "key 'relax.period_tolerance': is the free period's stop rule"},
@@ -119,4 +120,31 @@ TEST(Sweep, OneProcessAndTwoAndFourRanksRelaxEveryCaseToTheSameResult) {
     }
     EXPECT_EQ(static_cast<int>(used.size()), ranks);
   }
+}
+
+// A sweep over repeat widths (docs/sweeps.md, `widths`): each case relaxes the repeat held at its width (`--period
+// Wx1`), named in its label, and its row gives one repeat's energy and stress there; with a free period the width
+// is where each case starts.
+TEST(Sweep, WidthsHoldTheRepeatAtEachWidthOrStartItThere) {
+  ScratchDir dir;
+  const auto file = dir.write("widths.json", R"({"patterns": [")" + kPatterns + R"(/stockinette.knit"], "widths": [0.9, 1],
+      "relax": {"max_steps": 60, "audit": false}, "pictures": false, "output": ")" + (dir / "w").string() + R"("})");
+  const auto r = run_command(std::string(SKEIN_BIN) + " sweep " + file.string());
+  ASSERT_LE(r.status, 1) << r.output;
+  const json rows = json::parse(slurp(dir / "w" / "sweep.json")).at("rows");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("width"), 0.9);
+  EXPECT_NE(rows[0].at("label").get<std::string>().find("width-0.9"), std::string::npos) << rows[0].dump();
+  EXPECT_EQ(rows[1].at("label").get<std::string>().find("width"), std::string::npos) << "the default width is not named";
+  EXPECT_EQ(rows[0].at("period"), "fixed");
+  EXPECT_NEAR(rows[0].at("repeat_mm")[0].get<double>(), 0.9 * rows[1].at("repeat_mm")[0].get<double>(), 1e-9);  // held where asked
+  EXPECT_TRUE(rows[0].at("repeat_energy").is_number());
+  EXPECT_EQ(rows[0].at("stress_over_bending").size(), 3u);
+  // With a free period the width is the start: the relaxed width moves from it.
+  const auto free_file = dir.write("free.json", R"({"patterns": [")" + kPatterns + R"(/stockinette.knit"], "widths": 0.85, "take_up": 0.8,
+      "relax": {"max_steps": 300, "audit": false, "free_period": "x"}, "pictures": false, "output": ")" + (dir / "f").string() + R"("})");
+  ASSERT_LE(run_command(std::string(SKEIN_BIN) + " sweep " + free_file.string()).status, 1);
+  const json free_row = json::parse(slurp(dir / "f" / "sweep.json")).at("rows").at(0);
+  EXPECT_EQ(free_row.at("period"), "free");
+  EXPECT_NE(free_row.at("repeat_mm")[0].get<double>(), 0.85 * rows[1].at("repeat_mm")[0].get<double>());
 }
