@@ -188,6 +188,21 @@ TEST(Cli, AShapedPieceIsEmittedOnceAndRelaxedWithFreeBorders) {
   }
 }
 
+TEST(Cli, OnlyLeafsRelativeRuleWarnsOfAFirstResidualFromAFewPoints) {
+  // Feather and fan under tension: a few kinked points hold all of the first step's forces. Leaf's rule scales its
+  // tolerance by that first residual, so it warns that it may stop early; the force rule's scale is absolute and
+  // must not (it did, until this test).
+  ScratchDir dir;
+  const std::string pattern = std::string(SKEIN_PATTERNS_DIR) + "/written/feather-and-fan.txt";
+  const std::string warning = "Leaf's relative stop rule may end this run early";
+  for (const std::string rule : {"leaf", "force"}) {
+    const auto r = run_skein("pattern " + pattern + " --relax --no-audit --take-up 0.8 --max-steps 2 --stop-rule " + rule + " -o " +
+                             (dir / "f.bcc").string());
+    ASSERT_LE(r.status, 1) << r.output;
+    EXPECT_EQ(r.output.find(warning) != std::string::npos, rule == "leaf") << rule << "\n" << r.output;
+  }
+}
+
 TEST(Cli, DoylesStitchDensityIsTheLoopLengthsWhateverTheYarn) {
   // Issue 24 (Doyle 1953): relaxed plain knit's stitches per length follow the loop length, not the yarn. At dk's
   // gauge (one loop length, Munden's 17.8 mm) fingering and worsted (contact diameters 0.57 and 1.17 mm: l/d 31
