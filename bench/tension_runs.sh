@@ -29,6 +29,11 @@ Row 2: K2, p4, k2.
 Row 3: P2, k4, p2.
 Row 4: K2, p4, k2.
 EOF
+# The emitted tilings the cable's lean and the fan's bow are measured from (the same at every take-up).
+"$skein" -q pattern patterns/written/rope-cable.txt --tile 2x2 -o "$tmp/rope-em.bcc" --ids "$tmp/rope-ids.csv"
+"$skein" -q pattern patterns/written/feather-and-fan.txt --tile 1x3 -o "$tmp/fan-em.bcc"
+emitted_lean=$(python3 bench/cable_lean.py "$tmp/rope-em.bcc" "$tmp/rope-ids.csv" | cut -d, -f2)
+emitted_bow=$(python3 bench/row_bow.py "$tmp/fan-em.bcc" "$tmp/fan-em.bcc")
 echo "| pattern | take-up | measure | value | against | ratio | run |"
 echo "| --- | --- | --- | --- | --- | --- | --- |"
 for t in "${takes[@]}"; do
@@ -45,13 +50,11 @@ for t in "${takes[@]}"; do
   relax flat-$t "$tmp/uncrossed.txt" "$t"
   w=$(width "$tmp/rope-$t.json") u=$(width "$tmp/flat-$t.json")
   echo "| rope cable (C4B) | $t | panel width [mm] | $(printf %.2f "$w") | uncrossed $(printf %.2f "$u") | $(python3 -c "print(f'{$w / $u:.3f}')") | $(outcome "$tmp/rope-$t.json"); uncrossed $(outcome "$tmp/flat-$t.json") |"
-  "$skein" -q pattern patterns/written/rope-cable.txt --tile 2x2 -o "$tmp/rope-em.bcc" --ids "$tmp/rope-ids.csv"
   "$skein" -q pattern patterns/written/rope-cable.txt --tile 2x2 --relax --tiled --no-audit --take-up "$t" --max-steps $cap -o "$tmp/rope-tiled-$t.bcc" --report "$tmp/rope-tiled-$t.json"
   lean=$(python3 bench/cable_lean.py "$tmp/rope-em.bcc" "$tmp/rope-ids.csv" "$tmp/rope-tiled-$t.bcc" | tail -1)
-  echo "| rope cable (C4B), 2 x 2 free borders | $t | strands' median lean [°] | $(echo "$lean" | cut -d, -f2) | emitted $(python3 bench/cable_lean.py "$tmp/rope-em.bcc" "$tmp/rope-ids.csv" | cut -d, -f2) | | $(outcome "$tmp/rope-tiled-$t.json") |"
+  echo "| rope cable (C4B), 2 x 2 free borders | $t | strands' median lean [°] | $(echo "$lean" | cut -d, -f2) | emitted $emitted_lean | | $(outcome "$tmp/rope-tiled-$t.json") |"
   relax fan-$t patterns/written/feather-and-fan.txt "$t" --tile 1x3 --preview "$tmp/fan-pv-$t.bcc"
-  "$skein" -q pattern patterns/written/feather-and-fan.txt --tile 1x3 -o "$tmp/fan-em.bcc"
-  echo "| feather and fan | $t | rows' bow [mm] | $(python3 bench/row_bow.py "$tmp/fan-em.bcc" "$tmp/fan-pv-$t.bcc") | as emitted $(python3 bench/row_bow.py "$tmp/fan-em.bcc" "$tmp/fan-em.bcc") | | $(outcome "$tmp/fan-$t.json") |"
+  echo "| feather and fan | $t | rows' bow [mm] | $(python3 bench/row_bow.py "$tmp/fan-em.bcc" "$tmp/fan-pv-$t.bcc") | as emitted $emitted_bow | | $(outcome "$tmp/fan-$t.json") |"
   relax honeycomb-$t patterns/honeycomb.knit "$t"
   relief=$(python3 bench/stitch_relief.py "$tmp/honeycomb-$t.bcc" | tail -1 | cut -f2)
   echo "| honeycomb | $t | width [mm]; cells' depth sd [mm] | $(printf %.2f "$(width "$tmp/honeycomb-$t.json")"); $relief | | | $(outcome "$tmp/honeycomb-$t.json") |"
