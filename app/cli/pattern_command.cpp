@@ -51,6 +51,7 @@ struct PatternCommand final : Subcommand {
   std::string pat_method = "lbfgs";
   std::string pat_stop_rule = "force";
   std::string pat_free_axes;
+  std::string pat_period_method = "frame";
   std::string pat_views = "flat";
   int pat_panel = 900;
   std::string pat_onto, pat_rows;
@@ -105,6 +106,11 @@ struct PatternCommand final : Subcommand {
                     "docs/patterns.md)")
         ->expected(0, 1)->default_str("x")->check(CLI::IsMember({"xy", "x", "y"}));
     pat->add_option("--period-tolerance", pat_options.period.tolerance, "with --free-period: the largest stress left, × B/r³")->capture_default_str();
+    pat->add_option("--period-method", pat_period_method,
+                    "with --free-period: frame (the period relaxes with the points) or bracket (one free length: the repeat relaxed at "
+                    "fixed widths until the stress-free one is bracketed; converges under tension, docs/patterns.md)")
+        ->check(CLI::IsMember({"frame", "bracket"}))
+        ->capture_default_str();
     add_yarn_option(pat, "k_bend", pat_options.params.k_bend, "with --relax: ");
     add_yarn_option(pat, "k_contact", pat_options.params.k_contact, "with --relax: ");
     add_yarn_option(pat, "k_stretch", pat_options.params.k_stretch, "with --relax: ");
@@ -266,6 +272,7 @@ struct PatternCommand final : Subcommand {
       pat_options.period.free = pat->count("--free-period") > 0;
       pat_options.period.free_x = pat_free_axes != "y";
       pat_options.period.free_y = pat_free_axes == "y" || pat_free_axes == "xy";
+      pat_options.period.method = pat_period_method == "bracket" ? relax::PeriodOptions::Method::Bracket : relax::PeriodOptions::Method::Frame;
       if (pat_options.period.free && pat_tiled) throw Error("", "--free-period", "needs the periodic patch (not --tiled)");
       pat_options.params = relax::radius_scaled(pat_options.params, pat_gamma);
       pat_options.validate();

@@ -56,8 +56,8 @@ std::vector<double> numbers(const Keys& k, const std::string& key, double low, d
 
 /// The "relax" object as `skein pattern` options (docs/sweeps.md lists the keys).
 std::vector<std::string> relax_arguments(const Keys& k) {
-  k.only({"method", "stop_rule", "free_period", "max_steps", "max_seconds", "tolerance", "force_tolerance", "period_tolerance", "audit",
-          "k_bend", "k_contact", "contact_spacing"});
+  k.only({"method", "stop_rule", "free_period", "max_steps", "max_seconds", "tolerance", "force_tolerance", "period_tolerance", "period_method",
+          "audit", "k_bend", "k_contact", "contact_spacing"});
   std::vector<std::string> args;
   const auto option = [&](const std::string& key, const std::string& flag, const std::string& value) {
     if (k.has(key)) args.insert(args.end(), {flag, value});
@@ -73,6 +73,9 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   if (k.has("period_tolerance") && std::find(args.begin(), args.end(), "--free-period") == args.end())
     k.fail(k.name("period_tolerance"), "is the free period's stop rule: give free_period too");
   option("period_tolerance", "--period-tolerance", number_text(k.number("period_tolerance", 0, 0, 1e6)));
+  if (k.has("period_method") && std::find(args.begin(), args.end(), "--free-period") == args.end())
+    k.fail(k.name("period_method"), "is how the free period relaxes: give free_period too");
+  option("period_method", "--period-method", k.choice("period_method", "frame", {"frame", "bracket"}));
   if (!k.flag("audit", true)) args.push_back("--no-audit");
   option("k_bend", "--k-bend", number_text(k.option("k_bend", 0)));
   option("k_contact", "--k-contact", number_text(k.option("k_contact", 0)));

@@ -187,6 +187,12 @@ void PeriodOptions::validate() const {
   if (!(tolerance > 0) || !std::isfinite(tolerance))
     throw Error("", "period tolerance", "must be positive (a share of the yarn's bending force per length), found " + std::to_string(tolerance));
   if (!free_x && !free_y) throw Error("", "--free-period", "frees neither length of the repeat: give x, y or xy");
+  if (!(bracket > 0 && bracket < 0.1))
+    throw Error("", "period bracket", "must be above 0 and below 0.1 (a share of the width), found " + std::to_string(bracket));
+  if (!(trial_force_tolerance > 0) || !std::isfinite(trial_force_tolerance))
+    throw Error("", "period trial force tolerance", "must be positive, found " + std::to_string(trial_force_tolerance));
+  if (free && method == Method::Bracket && (free_x == free_y || shear))
+    throw Error("", "--period-method bracket", "finds one free length (--free-period x or y, without --shear); frame relaxes both");
 }
 
 PeriodRelaxer::PeriodRelaxer(const PeriodOptions& options, const Eigen::Vector3d& period_x, const Eigen::Vector3d& period_y) : m_options(options) {

@@ -70,6 +70,16 @@ struct PeriodOptions {
   /// Converged when every free component's stress (dE/dL per length of the cut it acts across) is at most
   /// this times the yarn's bending force per length B / r³ (the stop rule's scale, StopRule).
   double tolerance = 1e-3;
+  /// How the free length relaxes. Frame: with the points, as L-BFGS's variables (CellFrame; Rprop beside FIRE and
+  /// Euler). Bracket: the repeat relaxed at one fixed width after another until the width where its stress is
+  /// zero is found (period_search.hpp): one free length, no shear; under tension, where the width is a soft mode
+  /// that the frame creeps along, it converges.
+  enum class Method { Frame, Bracket } method = Method::Frame;
+  /// Bracket: converged too when the stress-free length is bracketed within this share of it.
+  double bracket = 5e-3;
+  /// Bracket: each width's relaxation stops at this force tolerance (× B / r³) when the run's is looser
+  /// (period_search.hpp says why).
+  double trial_force_tolerance = 0.1;
   void validate() const;    ///< throws skein::Error for a tolerance that is not positive or no length free
 };
 

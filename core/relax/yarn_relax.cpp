@@ -13,6 +13,7 @@
 
 #include "common/cpu_threads.hpp"
 #include "common/error.hpp"
+#include "relax/period_search.hpp"
 #include "relax/yarn_audit.hpp"
 #include "relax/yarn_checkpoint.hpp"
 #include "relax/yarn_model.hpp"
@@ -151,6 +152,8 @@ void YarnRelaxOptions::validate() const {
   if (active_set.enabled) active_set.validate();
   if (active_set.enabled && method == YarnMethod::Lbfgs)
     throw Error("", "--active-set", "works with fire or euler: L-BFGS moves every point along one direction");
+  if (!(lbfgs_first_trust >= 1e-3 && lbfgs_first_trust <= 1))
+    throw Error("", "yarn relaxation", "L-BFGS's first trust must be 0.001 to 1, found " + std::to_string(lbfgs_first_trust));
   if (lbfgs_memory < 1 || lbfgs_memory > 100)
     throw Error("", "yarn relaxation", "the L-BFGS memory must be 1 to 100 moves, found " + std::to_string(lbfgs_memory));
   sampling.validate();
@@ -209,6 +212,7 @@ std::string to_string(StopReason reason) {
     case StopReason::Diverged: return "diverged";
     case StopReason::NothingChanged: return "nothing changed";
     case StopReason::UnsafeSplice: return "unsafe splice";
+    case StopReason::NoStressFreePeriod: return "no stress-free period";
   }
   return "";
 }
@@ -364,7 +368,7 @@ class CpuYarnRelaxer final : public YarnRelaxer {
 public:
   CpuYarnRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
       : m_system(system), m_targets(targets), m_options(options), m_auditor(system), m_forces(system, options.params),
-        m_changed(system.num_points(), 1), m_lbfgs(options.lbfgs_memory), m_periodic(targets.periodic) {
+        m_changed(system.num_points(), 1), m_lbfgs(options.lbfgs_memory), m_lbfgs_trust(options.lbfgs_first_trust), m_periodic(targets.periodic) {
     m_options.validate();
     m_forces.set_periodic(m_periodic);
     if (m_options.period.free && (m_periodic.virtual_points.empty() || m_periodic.cells.size() != m_periodic.virtual_points.size()))
@@ -793,7 +797,7 @@ private:
   LbfgsMemory m_lbfgs;           ///< L-BFGS: the remembered moves and gradient changes
   Eigen::Matrix3Xd m_lbfgs_grad, m_lbfgs_move;  ///< L-BFGS: the last step's gradient and the move it took
   bool m_lbfgs_moved = false;    ///< L-BFGS: a move was taken since the memory was last forgotten
-  double m_lbfgs_trust = 1;      ///< L-BFGS: the share of the movement limit a move may use
+  double m_lbfgs_trust;          ///< L-BFGS: the share of the movement limit a move may use
 
   void forget_lbfgs(double shrink) {
     m_lbfgs.forget();
@@ -809,6 +813,7 @@ private:
 }  // namespace
 
 std::unique_ptr<YarnRelaxer> make_cpu_yarn_relaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options) {
+  if (options.period.free && options.period.method == PeriodOptions::Method::Bracket) return make_period_search(system, targets, options);
   return std::make_unique<CpuYarnRelaxer>(system, targets, options);
 }
 

@@ -130,6 +130,10 @@ struct YarnRelaxOptions {
   double time_step = 0;         ///< [s] Euler's step and FIRE's first step; 0: 0.002 for Euler, 0.02 for FIRE
   double fire_max_step = 0.2;   ///< [s] FIRE's largest step
   int lbfgs_memory = 8;         ///< L-BFGS: the moves and force changes it remembers
+  /// L-BFGS: the share of the movement limit its first moves may use, growing by a tenth a step to the whole.
+  /// Below 1 for a state already tight: a first move of the whole limit along the bare gradient can press yarn
+  /// deep into yarn (a free period's trial widths, period_search.hpp).
+  double lbfgs_first_trust = 1;
   StopRule stop_rule = StopRule::Leaf;
   double force_tolerance = 0.5;  ///< StopRule::Force: the largest force per length / (B / r³)
   long stall_window = 200;      ///< StopRule::Force: steps over which the energy must have stalled
@@ -196,6 +200,7 @@ enum class StopReason {
   Diverged,        ///< the energy became NaN or infinite
   NothingChanged,  ///< a local re-relaxation with no changed stitch
   UnsafeSplice,    ///< a local re-relaxation whose splice would cross yarn: nothing relaxed
+  NoStressFreePeriod,  ///< a free period's bracket search found no stress-free length within reach
 };
 std::string to_string(StopReason reason);  ///< "converged", "step cap", "time cap", ... ("" for None)
 inline std::ostream& operator<<(std::ostream& out, StopReason reason) { return out << to_string(reason); }

@@ -47,9 +47,11 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   for (const auto& p : skein::workflow::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
   EXPECT_NEAR(hi - lo, ehi - elo + 2 * (repeat[0].get<double>() - 6.0), 0.05);
   // Refused, naming the option, with nothing written.
-  const std::array<std::pair<const char*, const char*>, 4> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
+  const std::array<std::pair<const char*, const char*>, 6> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
                                                                          {"--relax --stop-rule force --backend cuda", "runs on the CPU only"},
                                                                          {"--relax --free-period --period-tolerance 0", "period tolerance"},
+                                                                         {"--relax --free-period xy --period-method bracket", "finds one free length"},
+                                                                         {"--relax --period-method bracket", "--period-method"},
                                                                          {"--relax --k-stretch -1", "--k-stretch: must be in [0, 1e+09], found -1"}}};
   // --period with --free-period is where the period starts: the log's first row has 0.8 of the emitted width.
   r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "start.bcc").string() + " --relax --free-period --period 0.8x1 --max-steps 5 --log " +

@@ -55,6 +55,8 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "relax": {"method": "rk4"}})", "key 'relax.method'"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"steps": 5}})", "key 'relax.steps': is not a key here"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"period_tolerance": 0.01}})", "key 'relax.period_tolerance': is the free period's stop rule"},
+           {R"({"patterns": [")" + stock + R"("], "relax": {"period_method": "bracket"}})", "key 'relax.period_method': is how the free period relaxes"},
+           {R"({"patterns": [")" + stock + R"("], "relax": {"free_period": "x", "period_method": "newton"}})", "key 'relax.period_method'"},
            {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
            {R"({"patterns": [")" + stock + R"("], "gamma": [1E400]})", "number overflow"},  // found by CI's fuzzing
        }) {
@@ -140,11 +142,14 @@ TEST(Sweep, WidthsHoldTheRepeatAtEachWidthOrStartItThere) {
   EXPECT_NEAR(rows[0].at("repeat_mm")[0].get<double>(), 0.9 * rows[1].at("repeat_mm")[0].get<double>(), 1e-9);  // held where asked
   EXPECT_TRUE(rows[0].at("repeat_energy").is_number());
   EXPECT_EQ(rows[0].at("stress_over_bending").size(), 3u);
-  // With a free period the width is the start: the relaxed width moves from it.
+  // With a free period the width is the start: the relaxed width moves from it (here by the bracket search, which
+  // converges under tension).
   const auto free_file = dir.write("free.json", R"({"patterns": [")" + kPatterns + R"(/stockinette.knit"], "widths": 0.85, "take_up": 0.8,
-      "relax": {"max_steps": 300, "audit": false, "free_period": "x"}, "pictures": false, "output": ")" + (dir / "f").string() + R"("})");
+      "relax": {"max_steps": 8000, "audit": false, "free_period": "x", "period_method": "bracket"}, "pictures": false, "output": ")" +
+      (dir / "f").string() + R"("})");
   ASSERT_LE(run_command(std::string(SKEIN_BIN) + " sweep " + free_file.string()).status, 1);
   const json free_row = json::parse(slurp(dir / "f" / "sweep.json")).at("rows").at(0);
   EXPECT_EQ(free_row.at("period"), "free");
+  EXPECT_EQ(free_row.at("stopped_by"), "converged");
   EXPECT_NE(free_row.at("repeat_mm")[0].get<double>(), 0.85 * rows[1].at("repeat_mm")[0].get<double>());
 }

@@ -1,0 +1,171 @@
+#include "relax/period_search.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+
+#include "common/error.hpp"
+
+namespace skein::relax {
+
+const WidthTrial& WidthSearch::result() const {
+  if (m_within) return m_last;
+  if (m_converged) return std::abs(m_low.stress) < std::abs(m_high.stress) ? m_low : m_high;
+  return m_best;
+}
+
+double WidthSearch::next(const WidthTrial& trial) {
+  ++m_trials;
+  if (m_trials == 1 || std::abs(trial.stress) < std::abs(m_best.stress)) m_best = trial;
+  if (std::abs(trial.stress) <= m_tolerance) {
+    m_converged = m_within = true;
+    m_last = trial;
+    return 0;
+  }
+  // The bracket's ends: the repeat pulled out (it would widen) at the narrow end, pushed in at the wide end.
+  if (trial.stress < 0) {
+    m_low = trial, m_low_set = true, m_kept_high = m_high_set ? m_kept_high + 1 : 0, m_kept_low = 0;
+  } else {
+    m_high = trial, m_high_set = true, m_kept_low = m_low_set ? m_kept_low + 1 : 0, m_kept_high = 0;
+  }
+  const bool bracketed = m_low_set && m_high_set && m_low.width < m_high.width;
+  double next = 0;
+  if (bracketed) {
+    if (m_high.width - m_low.width <= m_bracket * trial.width) {
+      m_converged = true;
+      return 0;
+    }
+    // Regula falsi; an end kept twice in a row counts half (Illinois), so a curved stress does not stall it.
+    const double s_low = m_low.stress * (m_kept_low >= 2 ? 0.5 : 1), s_high = m_high.stress * (m_kept_high >= 2 ? 0.5 : 1);
+    next = m_low.width + (m_high.width - m_low.width) * (-s_low) / (s_high - s_low);
+    // Not at an end: at least a tenth of the bracket in from each.
+    const double margin = 0.1 * (m_high.width - m_low.width);
+    next = std::clamp(next, m_low.width + margin, m_high.width - margin);
+  } else {
+    // Against the stress: the secant's step when the last trial is on the same side, within half to twice the last.
+    const double direction = trial.stress > 0 ? -1 : 1;
+    double step = m_step == 0 ? 0.04 * m_start : 2 * m_step;
+    if (m_step > 0 && (m_last.stress > 0) == (trial.stress > 0) && m_last.stress != trial.stress) {
+      const double secant = -trial.stress * (trial.width - m_last.width) / (trial.stress - m_last.stress);
+      if (secant * direction > 0) step = std::clamp(std::abs(secant), 0.5 * m_step, 2 * m_step);
+    }
+    step = std::min(step, 0.15 * trial.width);
+    m_step = step;
+    next = trial.width + direction * step;
+    if (next < 0.25 * m_start || next > 4 * m_start) return 0;  // no stress-free width in reach
+  }
+  m_last = trial;
+  return next;
+}
+
+namespace {
+
+class PeriodSearchRelaxer final : public YarnRelaxer {
+public:
+  PeriodSearchRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
+      : m_system(system), m_targets(targets), m_options(options) {
+    options.validate();
+    if (!options.period.free || options.period.method != PeriodOptions::Method::Bracket)
+      throw Error("", "--period-method bracket", "needs a free period");
+    if (options.period.free_x == options.period.free_y || options.period.shear)
+      throw Error("", "--period-method bracket", "finds one free length (--free-period x or y, without --shear); frame relaxes both");
+    const auto& map = targets.periodic;
+    if (map.virtual_points.empty() || map.cells.size() != map.virtual_points.size())
+      throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");
+    m_axis = options.period.free_x ? 0 : 1;
+    m_inner = options;
+    m_inner.period.free = false;
+    m_inner.force_tolerance = std::min(options.force_tolerance, options.period.trial_force_tolerance);
+  }
+
+  YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step) override {
+    using Clock = std::chrono::steady_clock;
+    const auto started = Clock::now();
+    const auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
+    ShapeTargets targets = m_targets;  // its map follows the width tried
+    auto& map = targets.periodic;
+    if (!state.period.isZero()) {
+      // A state that brings its period (the points already at it): the map's offsets follow.
+      Eigen::Matrix3Xd none(3, 0);
+      scale_period(map, none, state.period(0, 0) / map.period_x.x(), state.period(1, 1) / map.period_y.y());
+    }
+    const auto width_of = [&] { return m_axis == 0 ? map.period_x.x() : map.period_y.y(); };
+    double width = width_of();
+    const double start = width;
+    WidthSearch search(width, m_options.period.tolerance, m_options.period.bracket);
+    std::vector<std::pair<YarnState, YarnRelaxReport>> trials;  // per trial: its state and report
+    YarnRelaxReport report;
+    double first_peak = -1, first_trust = m_options.lbfgs_first_trust;
+    for (;;) {
+      auto inner = m_inner;
+      inner.lbfgs_first_trust = first_trust;
+      if (m_options.max_seconds > 0) inner.max_seconds = std::max(1e-3, m_options.max_seconds - seconds());
+      const auto trial_report = make_cpu_yarn_relaxer(m_system, targets, inner)->run(state, [&](const YarnStepLog& s) {
+        if (!on_step) return;
+        YarnStepLog log = s;
+        log.period_x = map.period_x.x(), log.period_y = map.period_y.y();
+        on_step(log);
+      });
+      if (search.trials() == 0) first_peak = trial_report.first_residual_peak;
+      report = trial_report;
+      if (trial_report.stopped_by != StopReason::Converged) break;  // a cap, an interrupt, a jam: the search ends with the run
+      const WidthTrial trial{width, trial_report.period_stress[m_axis]};
+      const double next = search.next(trial);
+      spdlog::info("free period by bracket: {} {:.4g} mm, stress {:+.3g} B/r³ after {} steps", m_axis == 0 ? "width" : "height", width,
+                   trial.stress, trial_report.steps);
+      trials.emplace_back(state, trial_report);
+      if (next == 0) break;
+      const double scale = next / width;
+      scale_period(map, state.points, m_axis == 0 ? scale : 1, m_axis == 1 ? scale : 1);
+      state.velocities.setZero();
+      first_trust = std::min(first_trust, 0.01);  // the state is tight now: L-BFGS starts with small moves
+      width = width_of();  // next, as the map holds it
+    }
+    if (report.stopped_by == StopReason::Converged) {
+      // The search is over: its result's state, with the counters of the whole run.
+      const YarnState last = state;
+      const auto& [result_state, result_report] = *std::min_element(trials.begin(), trials.end(), [&](const auto& a, const auto& b) {
+        return std::abs(a.second.period(m_axis, m_axis) - search.result().width) < std::abs(b.second.period(m_axis, m_axis) - search.result().width);
+      });
+      state = result_state;
+      state.step = last.step, state.guard = last.guard, state.rollbacks = last.rollbacks;
+      state.contact_rebuilds = last.contact_rebuilds, state.pull_through_events = last.pull_through_events;
+      const long steps = report.steps;
+      const auto guard = report.guard;
+      const long events = report.pull_through_events, rollbacks = report.rollbacks, rebuilds = report.contact_rebuilds;
+      report = result_report;
+      report.steps = steps, report.guard = guard, report.pull_through_events = events, report.rollbacks = rollbacks;
+      report.contact_rebuilds = rebuilds;
+      report.converged = search.converged();
+      report.stopped_by = search.converged() ? StopReason::Converged : StopReason::NoStressFreePeriod;
+      if (!search.converged())
+        spdlog::warn("free period by bracket: no stress-free {} from a quarter to four times {:.4g} mm; the least stress was {:+.3g} B/r³ at {:.4g} mm",
+                     m_axis == 0 ? "width" : "height", start, search.result().stress, search.result().width);
+    }
+    state.period = report.period;
+    report.free_period = true;
+    for (int i = 0; i < 3; ++i)
+      if (i != m_axis) report.period_stress[i] = 0;  // as a free period reports: its free components' stresses
+    report.first_residual_peak = first_peak;
+    report.wall_seconds = seconds();
+    return report;
+  }
+
+private:
+  const YarnSystem& m_system;
+  const ShapeTargets& m_targets;
+  YarnRelaxOptions m_options, m_inner;
+  int m_axis = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<YarnRelaxer> make_period_search(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options) {
+  return std::make_unique<PeriodSearchRelaxer>(system, targets, options);
+}
+
+}  // namespace skein::relax

@@ -1,0 +1,57 @@
+#pragma once
+// A free period found from outside (issue 24): the repeat relaxed at fixed widths, one after another, and the
+// width where its stress is zero found by a bracketing root search. Under tension (take-up below 1) the width
+// of a fabric is a soft mode: relaxed with the points (CellFrame) it creeps for tens of thousands of steps at
+// stresses far above the period's tolerance, while a fixed width converges in a few thousand. The stress at a
+// converged width is the energy's derivative there (cell_stress at equilibrium), so the search needs no mass
+// for the period and ends with the stress-free width bracketed.
+#include <memory>
+
+#include "relax/shape_targets.hpp"
+#include "relax/yarn_relax.hpp"
+
+namespace skein::relax {
+
+/// One relaxation at a fixed width, as the search saw it.
+struct WidthTrial {
+  double width = 0;   ///< the repeat's length along the free axis [mm]
+  double stress = 0;  ///< the free axis's stress at the end, over B / r³ (positive: the repeat would narrow)
+};
+
+/// Where to relax next, from converged trials along one axis. Against the stress until a trial's stress
+/// changes sign: 4 % of the start width first, then the secant of the last two trials, kept within half and
+/// twice the last step and 15 % of the width. A bracket so found has the repeat pulled out (stress < 0) at its
+/// narrow end and pushed in at its wide end: an energy minimum lies between. Inside it, regula falsi with the
+/// Illinois halving of an end kept twice (Dowell and Jarratt 1971). Done when a trial's stress is at most
+/// `tolerance`, when the bracket is narrower than `bracket` of the width (converged either way), or when the
+/// width would leave a quarter to four times the start (not converged: no stress-free width there).
+class WidthSearch {
+public:
+  WidthSearch(double start, double tolerance, double bracket) : m_start(start), m_tolerance(tolerance), m_bracket(bracket) {}
+  /// The width to try after `trial`; 0 when the search is over.
+  double next(const WidthTrial& trial);
+  bool converged() const { return m_converged; }
+  /// The answer once the search is over: the trial within the tolerance, else the bracket's end with the smaller
+  /// stress, else (not converged) the trial with the smallest stress. On a rib's plateau, where the stress
+  /// stays small and nearly flat, the smallest stress can lie far outside the final bracket.
+  const WidthTrial& result() const;
+  int trials() const { return m_trials; }
+
+private:
+  double m_start, m_tolerance, m_bracket;
+  WidthTrial m_best, m_last, m_low, m_high;  // m_low: stress < 0, the narrow end; m_high: stress > 0
+  bool m_low_set = false, m_high_set = false, m_converged = false, m_within = false;
+  int m_trials = 0, m_kept_low = 0, m_kept_high = 0;
+  double m_step = 0;
+};
+
+/// The relaxer of a free period by WidthSearch (PeriodOptions::Method::Bracket): one free length, no shear. Every
+/// width is relaxed by the CPU relaxer with the period fixed, converged by the run's stop rule with the force
+/// tolerance at most PeriodOptions::trial_force_tolerance (a rib's plateau stress is about 0.007 B/r³ under
+/// tension, and trials stopped at the run's 0.5 B/r³ leave noise of that size in it), from the last
+/// trial's points stretched to it: an affine map of the whole patch, copies and frozen points too, which moves
+/// no yarn through another. Ends with the result()'s points and period. Steps, the step and time caps and
+/// interrupts count over all trials; the log and the report see one run.
+std::unique_ptr<YarnRelaxer> make_period_search(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options);
+
+}  // namespace skein::relax

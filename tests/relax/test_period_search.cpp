@@ -1,0 +1,131 @@
+// The free period found by a bracketing search over fixed widths (relax/period_search.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "relax/period_search.hpp"
+#include "relax/yarn_cell.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/stitch_model.hpp"
+#include "workflow/yarn_periodic.hpp"
+
+using namespace skein;
+using namespace skein::relax;
+using namespace skein::workflow;
+
+namespace {
+
+/// WidthSearch driven by a stress function from `start`: the widths it tries until it is over.
+WidthSearch search_of(const std::function<double(double)>& stress, double start, double tolerance = 1e-3, int* trials = nullptr) {
+  WidthSearch search(start, tolerance, 5e-3);
+  int n = 0;
+  for (double width = start; width > 0 && n < 200; ++n) width = search.next({width, stress(width)});
+  if (trials) *trials = n;
+  return search;
+}
+
+}  // namespace
+
+TEST(WidthSearch, FindsTheZeroOfAStiffeningStressFromEitherSide) {
+  const auto stress = [](double w) { return 0.05 * (w - 4.8) + 0.3 * std::pow(w - 4.8, 3); };
+  for (double start : {6.0, 4.0}) {
+    int trials = 0;
+    const auto search = search_of(stress, start, 1e-3, &trials);
+    ASSERT_TRUE(search.converged()) << start;
+    EXPECT_NEAR(search.result().width, 4.8, 0.01 * 4.8) << start;
+    EXPECT_LT(trials, 20) << start;
+  }
+}
+
+TEST(WidthSearch, StopsAtTheWallAfterAPlateau) {
+  // A rib under tension: a small, nearly flat inward stress over a wide range of widths, then the knit wales
+  // meet and the stress turns sharply outward (period_search.hpp; the trials of docs/BENCHMARKS.md). The
+  // search ends within its bracket at the wall, not at the plateau's smallest stress.
+  const auto stress = [](double w) { return w > 5.9 ? 0.007 + 0.0001 * std::sin(7 * w) : 0.007 - 0.5 * (5.9 - w); };
+  const auto search = search_of(stress, 12.0, 1e-3);
+  ASSERT_TRUE(search.converged());
+  EXPECT_NEAR(search.result().width, 5.886, 0.03);
+}
+
+TEST(WidthSearch, SaysSoWhenNoStressFreeWidthIsInReach) {
+  const auto search = search_of([](double) { return 0.2; }, 6.0);  // always inward: it would shrink to nothing
+  EXPECT_FALSE(search.converged());
+  EXPECT_GE(search.result().width, 0.25 * 6.0);
+}
+
+namespace {
+
+/// A pattern's periodic patch at `take_up`, its width free by the bracket search from `start` of its emitted width.
+struct BracketRun {
+  YarnRelaxReport run;
+  double wale = 0;
+};
+BracketRun bracket_run(const std::string& text, double take_up, double start) {
+  const auto pattern = mesh::parse_pattern(text, "test.knit");
+  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
+  auto system = make_yarn_system(patch.yarn, take_up);
+  ShapeTargets targets;
+  targets.periodic = patch.map;
+  scale_period(targets.periodic, system.points, start, 1);
+  YarnRelaxOptions options;
+  options.method = YarnMethod::Lbfgs;
+  options.stop_rule = StopRule::Force;
+  options.audit = false;
+  options.max_steps = 30000;
+  options.period.free = true;
+  options.period.free_y = false;
+  options.period.method = PeriodOptions::Method::Bracket;
+  auto state = initial_state(system, options);
+  BracketRun out;
+  out.run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
+  EXPECT_TRUE(out.run.converged) << text << ": " << out.run.stopped_by;
+  EXPECT_TRUE(out.run.free_period);
+  EXPECT_NEAR(state.period(0, 0), out.run.period(0, 0), 1e-12);  // the state ends at the period reported
+  out.wale = out.run.period(0, 0) / pattern.width();
+  return out;
+}
+
+}  // namespace
+
+// Under tension (take-up 0.8) the frame creeps along the width's soft mode for tens of thousands of steps (seed
+// and the ribs were still narrowing at 40,000); the search converges there in a few thousand. Seed ends 4.56 and
+// 4.48 mm a wale from two starts (2 % apart: its stress is nearly flat there), 0.90 to 0.92 of stockinette's:
+// nearly flat, where scans of fixed widths from the emitted yarn had it fold like a rib (docs/BENCHMARKS.md, "The
+// free width by bracketing"). Stockinette's is the frame's, from one start.
+TEST(PeriodSearch, UnderTensionSeedFindsOneWidthNearStockinettes) {
+  const auto plain = bracket_run("format knit\nk\n", 0.8, 1);
+  const auto seed_wide = bracket_run("format knit\nk p\np k\n", 0.8, 1), seed_narrow = bracket_run("format knit\nk p\np k\n", 0.8, 0.85);
+  std::printf("at a take-up of 0.8: stockinette %.3f mm a wale (%ld steps); seed %.3f and %.3f from 1 and 0.85 (%ld, %ld steps)\n", plain.wale,
+              plain.run.steps, seed_wide.wale, seed_narrow.wale, seed_wide.run.steps, seed_narrow.run.steps);
+  EXPECT_NEAR(seed_wide.wale, seed_narrow.wale, 0.03 * seed_wide.wale);
+  EXPECT_GT(std::min(seed_wide.wale, seed_narrow.wale), 0.85 * plain.wale);
+  EXPECT_NEAR(plain.wale, 4.97, 0.05);  // the frame's stress-free width (YarnCell.YarnUnderTensionFindsOneWidthFromEveryStart)
+}
+
+// The issue's "rib at least 20 % narrower than stockinette", converged: here 0.60 of stockinette's width. The
+// 1x1 rib's stress under tension is within a few thousandths of B/r³ of zero from 0.59 to 0.71 of stockinette's
+// width, so where in that range a search stops depends on its path (skein pattern's stops at 0.71).
+TEST(PeriodSearch, UnderTensionARibIsAtLeastAFifthNarrowerThanStockinette) {
+  const auto plain = bracket_run("format knit\nk\n", 0.8, 1), rib = bracket_run("format knit\nk p\n", 0.8, 1);
+  std::printf("at a take-up of 0.8: 1x1 rib %.3f mm a wale, %.3f of stockinette's (%ld steps)\n", rib.wale, rib.wale / plain.wale, rib.run.steps);
+  EXPECT_LT(rib.wale, 0.8 * plain.wale);
+}
+
+TEST(PeriodSearch, FindsOneFreeLengthOnly) {
+  PeriodOptions period;
+  period.free = true;
+  period.method = PeriodOptions::Method::Bracket;
+  EXPECT_THROW(period.validate(), skein::Error);  // x and y free
+  period.free_y = false;
+  EXPECT_NO_THROW(period.validate());
+  period.shear = true;
+  EXPECT_THROW(period.validate(), skein::Error);
+  period.shear = false;
+  period.bracket = 0;
+  EXPECT_THROW(period.validate(), skein::Error);
+}
