@@ -362,6 +362,10 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
                relax::to_string(report.stopped_by), report.steps, report.wall_seconds, report.residual, report.guard.finest_hits, report.guard.held_points,
                report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events),
                final ? "; wrote " + run.output : std::string());
+  if (report.stopped_by == relax::StopReason::StepCap && options.period.free && options.period.method == relax::PeriodOptions::Method::Frame &&
+      options.period.free_x != options.period.free_y && !options.period.shear)
+    spdlog::info("the free period was still moving at the step cap (under tension a width is a soft mode the frame creeps along): "
+                 "--period-method bracket relaxes fixed widths until the stress-free one is bracketed (docs/patterns.md)");
   if (!final)
     spdlog::warn("interrupted at step {}: {}", report.steps,
                  options.checkpoint.empty() ? std::string("without a checkpoint file the state is lost")
