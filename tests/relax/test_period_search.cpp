@@ -10,9 +10,7 @@
 #include "common/error.hpp"
 #include "relax/period_search.hpp"
 #include "relax/yarn_cell.hpp"
-#include "stitchmesh/pattern.hpp"
-#include "stitchmesh/stitch_model.hpp"
-#include "workflow/yarn_periodic.hpp"
+#include "tension_run.hpp"
 
 using namespace skein;
 using namespace skein::relax;
@@ -59,37 +57,9 @@ TEST(WidthSearch, SaysSoWhenNoStressFreeWidthIsInReach) {
 }
 
 namespace {
-
-/// A pattern's periodic patch at `take_up`, its width free by the bracket search from `start` of its emitted width.
-struct BracketRun {
-  YarnRelaxReport run;
-  double wale = 0;
-};
-BracketRun bracket_run(const std::string& text, double take_up, double start) {
-  const auto pattern = mesh::parse_pattern(text, "test.knit");
-  auto patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, 0.6);
-  auto system = make_yarn_system(patch.yarn, take_up);
-  ShapeTargets targets;
-  targets.periodic = patch.map;
-  scale_period(targets.periodic, system.points, start, 1);
-  YarnRelaxOptions options;
-  options.method = YarnMethod::Lbfgs;
-  options.stop_rule = StopRule::Force;
-  options.audit = false;
-  options.max_steps = 30000;
-  options.period.free = true;
-  options.period.free_y = false;
-  options.period.method = PeriodOptions::Method::Bracket;
-  auto state = initial_state(system, options);
-  BracketRun out;
-  out.run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  EXPECT_TRUE(out.run.converged) << text << ": " << out.run.stopped_by;
-  EXPECT_TRUE(out.run.free_period);
-  EXPECT_NEAR(state.period(0, 0), out.run.period(0, 0), 1e-12);  // the state ends at the period reported
-  out.wale = out.run.period(0, 0) / pattern.width();
-  return out;
+skein::testing::TensionRun bracket_run(const std::string& text, double take_up, double start) {
+  return skein::testing::relaxed_under_tension(text, take_up, start, 0.6, PeriodOptions::Method::Bracket);
 }
-
 }  // namespace
 
 // Under tension (take-up 0.8) the frame creeps along the width's soft mode for tens of thousands of steps (seed

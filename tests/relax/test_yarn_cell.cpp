@@ -15,6 +15,7 @@
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_relax.hpp"
 #include "open_area.hpp"
+#include "tension_run.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/stitch_model.hpp"
 #include "stitchmesh/yarn_emission.hpp"
@@ -388,36 +389,7 @@ TEST(YarnStopRule, AForceConvergedRunLosesUnderOnePercentMoreWhenContinued) {
 }
 
 namespace {
-// skein pattern TEXT --relax --free-period x --no-audit --take-up T --period STARTx1: the run, the repeat's width
-// per wale, and the patch and its relaxed points; `radius` is the yarn's (--yarn-radius).
-struct TensionRun {
-  YarnRelaxReport run;
-  double wale = 0;
-  PeriodicPatch patch;
-  Eigen::Matrix3Xd points;
-};
-TensionRun relaxed_under_tension(const std::string& text, double take_up, double start, double radius = 0.6) {
-  const auto pattern = mesh::parse_pattern(text, "test.knit");
-  TensionRun out;
-  out.patch = periodic_patch(pattern, mesh::StitchLibrary::bundled(), {}, radius);
-  auto system = make_yarn_system(out.patch.yarn, take_up);
-  ShapeTargets targets;
-  targets.periodic = out.patch.map;
-  scale_period(targets.periodic, system.points, start, 1);
-  YarnRelaxOptions options;
-  options.method = YarnMethod::Lbfgs;
-  options.stop_rule = StopRule::Force;
-  options.audit = false;
-  options.max_steps = 30000;
-  options.period.free = true;
-  options.period.free_y = false;
-  auto state = initial_state(system, options);
-  out.run = make_cpu_yarn_relaxer(system, targets, options)->run(state);
-  EXPECT_TRUE(out.run.converged) << text << ": " << out.run.stopped_by;
-  out.wale = out.run.period(0, 0) / pattern.width();
-  out.points = state.points;
-  return out;
-}
+using skein::testing::relaxed_under_tension;
 double wale_under_tension(const std::string& text, double take_up, double start, double radius = 0.6) {
   return relaxed_under_tension(text, take_up, start, radius).wale;
 }
