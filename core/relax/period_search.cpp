@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include <spdlog/spdlog.h>
 
 #include "common/error.hpp"
+#include "relax/yarn_audit.hpp"
+#include "relax/yarn_cell.hpp"
 
 namespace skein::relax {
 
@@ -120,7 +123,10 @@ public:
       trials.emplace_back(state, trial_report);
       if (next == 0) break;
       const double scale = next / width;
+      const Eigen::Matrix3Xd before = state.points;
       scale_period(map, state.points, m_axis == 0 ? scale : 1, m_axis == 1 ? scale : 1);
+      // An affine stretch moves no yarn through another; the auditor checks it as it checks every step.
+      if (m_options.audit) state.pull_through_events += static_cast<long>(auditor().crossings(before, state.points).size());
       state.velocities.setZero();
       first_trust = std::min(first_trust, 0.01);  // the state is tight now: L-BFGS starts with small moves
       width = width_of();  // next, as the map holds it
@@ -156,10 +162,19 @@ public:
   }
 
 private:
+  const TopologyAuditor& auditor() {
+    if (!m_auditor) {
+      m_auditor.emplace(m_system);
+      m_auditor->restrict_to(periodic_tested_segments(m_system, m_targets.periodic));
+    }
+    return *m_auditor;
+  }
+
   const YarnSystem& m_system;
   const ShapeTargets& m_targets;
   YarnRelaxOptions m_options, m_inner;
   int m_axis = 0;
+  std::optional<TopologyAuditor> m_auditor;  ///< built on the first stretch that is audited
 };
 
 }  // namespace

@@ -4,13 +4,17 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
 #include "relax/period_search.hpp"
 #include "relax/yarn_cell.hpp"
+#include "stitchmesh/pattern.hpp"
+#include "stitchmesh/stitch_model.hpp"
 #include "tension_run.hpp"
+#include "workflow/yarn_periodic.hpp"
 
 using namespace skein;
 using namespace skein::relax;
@@ -84,6 +88,31 @@ TEST(PeriodSearch, UnderTensionARibIsAtLeastAFifthNarrowerThanStockinette) {
   const auto plain = bracket_run("format knit\nk\n", 0.8, 1), rib = bracket_run("format knit\nk p\n", 0.8, 1);
   std::printf("at a take-up of 0.8: 1x1 rib %.3f mm a wale, %.3f of stockinette's (%ld steps)\n", rib.wale, rib.wale / plain.wale, rib.run.steps);
   EXPECT_LT(rib.wale, 0.8 * plain.wale);
+}
+
+TEST(PeriodSearch, AuditsEveryStepAndEveryStretch) {
+  // The same search with the auditor on: the trials' steps and the stretches between them (an affine map, which
+  // moves no yarn through another) are all audited, and none crosses.
+  auto patch = periodic_patch(mesh::parse_pattern("format knit\nk p\n", "test.knit"), mesh::StitchLibrary::bundled(), {}, 0.6);
+  const auto system = make_yarn_system(patch.yarn, 0.8);
+  ShapeTargets targets;
+  targets.periodic = patch.map;
+  YarnRelaxOptions options;
+  options.method = YarnMethod::Lbfgs;
+  options.stop_rule = StopRule::Force;
+  options.max_steps = 3000;  // several widths, not the whole search
+  options.period.free = true;
+  options.period.free_y = false;
+  options.period.method = PeriodOptions::Method::Bracket;
+  auto state = initial_state(system, options);
+  std::vector<double> widths;
+  const auto run = make_cpu_yarn_relaxer(system, targets, options)->run(state, [&](const YarnStepLog& s) {
+    if (widths.empty() || widths.back() != s.period_x) widths.push_back(s.period_x);
+  });
+  EXPECT_GE(widths.size(), 3u);  // the log follows the widths tried
+  EXPECT_EQ(run.pull_through_events, 0);
+  EXPECT_EQ(run.steps, 3000);
+  EXPECT_EQ(run.stopped_by, StopReason::StepCap);
 }
 
 TEST(PeriodSearch, FindsOneFreeLengthOnly) {
