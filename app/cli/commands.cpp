@@ -317,6 +317,15 @@ const std::atomic<bool>* install_interrupt_handlers() {
 
 int interrupt_signal() { return g_signal; }
 
+namespace {
+/// A free period still moving: over the run's last tenth it changed by more than 0.1 %.
+bool period_creeping(const std::vector<double>& periods) {
+  if (periods.size() < 10) return false;
+  const double late = periods[periods.size() - periods.size() / 10 - 1], last = periods.back();
+  return std::abs(last - late) > 1e-3 * std::abs(last);
+}
+}  // namespace
+
 RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSystem& system, const relax::ShapeTargets& targets,
                              const relax::YarnRelaxOptions& options, relax::YarnState& state, const YarnRunOutputs& run) {
   std::unique_ptr<std::ofstream> log;
@@ -339,6 +348,7 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
                following_free_cores() ? ", following the free cores" : "", wait_policy());
   const double log_tol = std::log(std::max(options.tolerance, 1e-12));
   std::vector<std::array<double, 3>> history;  // step, residual, energy
+  std::vector<double> periods;                 // with a free period: L_x + L_y, step by step
   const Stopwatch clock;
   const auto report = relaxer->run(state, [&](const relax::YarnStepLog& s) {
     if (log)
@@ -346,6 +356,7 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
            << s.guard_hits << ',' << s.held_points << ',' << s.crossings << ',' << clock.seconds() << ',' << s.awake << ','
            << s.force << ',' << s.period_x << ',' << s.period_y << std::endl;  // flushed: a long job's log can be followed
     history.push_back({static_cast<double>(s.step), s.residual, s.energy});
+    if (options.period.free) periods.push_back(s.period_x + s.period_y);
     const double by_steps = static_cast<double>(s.step) / std::max<long>(options.max_steps, 1);
     const double by_residual = s.residual > 0 && s.residual < 1 ? std::log(s.residual) / log_tol : 0;
     char text[160];
@@ -363,7 +374,7 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
                report.pull_through_events < 0 ? std::string("unaudited") : std::to_string(report.pull_through_events),
                final ? "; wrote " + run.output : std::string());
   if (report.stopped_by == relax::StopReason::StepCap && options.period.free && options.period.method == relax::PeriodOptions::Method::Frame &&
-      options.period.free_x != options.period.free_y && !options.period.shear)
+      options.period.free_x != options.period.free_y && !options.period.shear && period_creeping(periods))
     spdlog::info("the free period was still moving at the step cap (under tension a width is a soft mode the frame creeps along): "
                  "--period-method bracket relaxes fixed widths until the stress-free one is bracketed (docs/patterns.md)");
   if (!final)
@@ -430,9 +441,15 @@ RelaxOutcome relax_and_write(const relax::YarnCurves& yarn, const relax::YarnSys
                                  {"loop_length", loop / fabric["munden_loop_length_mm"].get<double>()}};
       }
     }
+    if (report.free_period) {
+      const bool bracket = options.period.method == relax::PeriodOptions::Method::Bracket;
+      free["method"] = bracket ? "bracket" : "frame";
+      if (bracket) free["widths_relaxed"] = report.period_trials;
+    }
     j[report.free_period ? "free_period" : "fixed_period"] = free;
     if (report.free_period)
-      spdlog::info("free period: the repeat relaxed to {:.2f} x {:.2f} mm (shear {:.3f}){}", lx, ly, period(0, 1) / ly,
+      spdlog::info("free period: the repeat {} {:.2f} x {:.2f} mm (shear {:.3f}){}", report.converged ? "relaxed to" : "not converged, at", lx, ly,
+                   period(0, 1) / ly,
                    run.repeat[0] > 0 ? fmt::format(": {:.1f} stitches and {:.1f} rows per 10 cm", 100.0 * run.repeat[0] / lx, 100.0 * run.repeat[1] / ly)
                                      : std::string());
     else

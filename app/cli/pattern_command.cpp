@@ -267,6 +267,7 @@ struct PatternCommand final : Subcommand {
     if (!pat_tubes.empty()) check_writable(pat_tubes);
     if (pat_relax) {
       pat_options.audit = !pat_no_audit;
+      pat_options.interrupt = install_interrupt_handlers();  // Ctrl-C stops the run after its step (and a sweep's case)
       pat_options.stop_rule = relax::parse_stop_rule(pat_stop_rule);
       pat_options.method = relax::parse_yarn_method(pat_method);
       pat_options.period.free = pat->count("--free-period") > 0;

@@ -76,6 +76,12 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   if (k.has("period_method") && std::find(args.begin(), args.end(), "--free-period") == args.end())
     k.fail(k.name("period_method"), "is how the free period relaxes: give free_period too");
   option("period_method", "--period-method", k.choice("period_method", "frame", {"frame", "bracket"}));
+  if (k.has("period_method") && k.choice("period_method", "frame", {"frame", "bracket"}) == "bracket" &&
+      k.choice("free_period", "x", {"x", "y", "xy"}) == "xy")
+    k.fail(k.name("period_method"), "bracket finds one free length: give free_period \"x\" or \"y\"");
+  if (k.has("period_method") && k.choice("period_method", "frame", {"frame", "bracket"}) == "bracket" && k.has("stop_rule") &&
+      k.choice("stop_rule", "force", workflow::yarn_option("stop_rule").choices) == "leaf")
+    k.fail(k.name("period_method"), "bracket judges each width by the force stop rule: leave stop_rule out or give \"force\"");
   if (!k.flag("audit", true)) args.push_back("--no-audit");
   option("k_bend", "--k-bend", number_text(k.option("k_bend", 0)));
   option("k_contact", "--k-contact", number_text(k.option("k_contact", 0)));

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "common/error.hpp"
@@ -22,6 +23,7 @@ const WidthTrial& WidthSearch::result() const {
 }
 
 double WidthSearch::next(const WidthTrial& trial) {
+  if (!std::isfinite(trial.stress)) return 0;  // over, not converged: no trial to go on from
   ++m_trials;
   if (m_trials == 1 || std::abs(trial.stress) < std::abs(m_best.stress)) m_best = trial;
   if (std::abs(trial.stress) <= m_tolerance) {
@@ -131,27 +133,38 @@ public:
       first_trust = std::min(first_trust, 0.01);  // the state is tight now: L-BFGS starts with small moves
       width = width_of();  // next, as the map holds it
     }
-    if (report.stopped_by == StopReason::Converged) {
-      // The search is over: its result's state, with the counters of the whole run.
+    const char* axis = m_axis == 0 ? "width" : "height";
+    const bool over = report.stopped_by == StopReason::Converged;  // else a cap, an interrupt, a jam cut a trial short
+    if (!trials.empty()) {
+      // The search's result so far (the run's counters kept): a trial cut short ends at no width of its own.
       const YarnState last = state;
+      const YarnRelaxReport cut = report;
       const auto& [result_state, result_report] = *std::min_element(trials.begin(), trials.end(), [&](const auto& a, const auto& b) {
         return std::abs(a.second.period(m_axis, m_axis) - search.result().width) < std::abs(b.second.period(m_axis, m_axis) - search.result().width);
       });
       state = result_state;
       state.step = last.step, state.guard = last.guard, state.rollbacks = last.rollbacks;
       state.contact_rebuilds = last.contact_rebuilds, state.pull_through_events = last.pull_through_events;
-      const long steps = report.steps;
-      const auto guard = report.guard;
-      const long events = report.pull_through_events, rollbacks = report.rollbacks, rebuilds = report.contact_rebuilds;
       report = result_report;
-      report.steps = steps, report.guard = guard, report.pull_through_events = events, report.rollbacks = rollbacks;
-      report.contact_rebuilds = rebuilds;
-      report.converged = search.converged();
-      report.stopped_by = search.converged() ? StopReason::Converged : StopReason::NoStressFreePeriod;
-      if (!search.converged())
-        spdlog::warn("free period by bracket: no stress-free {} from a quarter to four times {:.4g} mm; the least stress was {:+.3g} B/r³ at {:.4g} mm",
-                     m_axis == 0 ? "width" : "height", start, search.result().stress, search.result().width);
+      report.steps = cut.steps, report.guard = cut.guard, report.pull_through_events = cut.pull_through_events, report.rollbacks = cut.rollbacks;
+      report.contact_rebuilds = cut.contact_rebuilds;
+      report.converged = over && search.converged();
+      report.stopped_by = !over ? cut.stopped_by : search.converged() ? StopReason::Converged : StopReason::NoStressFreePeriod;
     }
+    if (over && search.converged())
+      spdlog::info("free period by bracket: {} {:.4g} mm after {} {}s ({}), stress {:+.3g} B/r³", axis, search.result().width, search.trials(), axis,
+                   search.within() ? "its stress within the tolerance" : "the bracket within " + fmt::format("{:g}", 100 * m_options.period.bracket) + " %",
+                   search.result().stress);
+    else if (over)
+      spdlog::warn("free period by bracket: no stress-free {} from a quarter to four times {:.4g} mm; the least stress was {:+.3g} B/r³ at {:.4g} mm",
+                   axis, start, search.result().stress, search.result().width);
+    else if (!trials.empty())
+      spdlog::warn("free period by bracket: {} during the {} {:.4g} mm; the {} kept is the search's best so far, {:.4g} mm (stress {:+.3g} B/r³), "
+                   "not converged", to_string(report.stopped_by), axis, width, axis, search.result().width, search.result().stress);
+    else
+      spdlog::warn("free period by bracket: {} before the first {} ({:.4g} mm) was relaxed: no stress-free {} found", to_string(report.stopped_by), axis,
+                   width, axis);
+    report.period_trials = search.trials();
     state.period = report.period;
     report.free_period = true;
     for (int i = 0; i < 3; ++i)

@@ -23,14 +23,16 @@ struct WidthTrial {
 /// twice the last step and 15 % of the width. A bracket so found has the repeat pulled out (stress < 0) at its
 /// narrow end and pushed in at its wide end: an energy minimum lies between. Inside it, regula falsi with the
 /// Illinois halving of an end kept twice (Dowell and Jarratt 1971). Done when a trial's stress is at most
-/// `tolerance`, when the bracket is narrower than `bracket` of the width (converged either way), or when the
-/// width would leave a quarter to four times the start (not converged: no stress-free width there).
+/// `tolerance`, when the bracket is narrower than `bracket` of the width (converged either way: the stress at
+/// the bracket's ends can then be several times the tolerance, or far more where it jumps, as at a rib's wall), or
+/// when the width would leave a quarter to four times the start or a stress is not finite (not converged).
 class WidthSearch {
 public:
   WidthSearch(double start, double tolerance, double bracket) : m_start(start), m_tolerance(tolerance), m_bracket(bracket) {}
   /// The width to try after `trial`; 0 when the search is over.
   double next(const WidthTrial& trial);
   bool converged() const { return m_converged; }
+  bool within() const { return m_within; }  ///< converged with a trial's stress within the tolerance (else by the bracket)
   /// The answer once the search is over: the trial within the tolerance, else the bracket's end with the smaller
   /// stress, else (not converged) the trial with the smallest stress. On a rib's plateau, where the stress
   /// stays small and nearly flat, the smallest stress can lie far outside the final bracket.
@@ -51,7 +53,8 @@ private:
 /// tension, and trials stopped at the run's 0.5 B/r³ leave noise of that size in it), from the last
 /// trial's points stretched to it: an affine map of the whole patch, copies and frozen points too, which moves
 /// no yarn through another. Ends with the result()'s points and period. Steps, the step and time caps and
-/// interrupts count over all trials; the log and the report see one run.
+/// interrupts count over all trials; the log and the report see one run. A run cut short (a cap, an interrupt, a
+/// jam) ends at the search's best finished width, not the one it was relaxing.
 std::unique_ptr<YarnRelaxer> make_period_search(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options);
 
 }  // namespace skein::relax

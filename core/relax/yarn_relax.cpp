@@ -143,6 +143,9 @@ void YarnRelaxOptions::validate() const {
   check_param(energy_stall, "energy_stall");
   if (stall_window < 1) throw Error("", "yarn relaxation", "the energy's stall window must be at least 1 step, found " + std::to_string(stall_window));
   period.validate();
+  if (period.free && period.method == PeriodOptions::Method::Bracket && stop_rule != StopRule::Force)
+    throw Error("", "--period-method bracket",
+                "judges each width by the force stop rule (--stop-rule force): Leaf's relative rule would judge later widths by the first one's forces");
   if (period.free && (checkpoint_every > 0 || checkpoint_minutes > 0))
     throw Error("", "yarn relaxation", "a free period is not checkpointed: relax a periodic patch without checkpoints");
   check_param(max_seconds, "max_seconds");

@@ -219,6 +219,7 @@ struct YarnRelaxReport {
   Eigen::Vector3d period_stress = Eigen::Vector3d::Zero();
   double repeat_energy = 0;  ///< one repeat's energy at the end (cell_stress), with a period
   CellStress::Terms repeat_terms;  ///< the same by term
+  int period_trials = 0;     ///< a free period by bracket (PeriodOptions::Method::Bracket): the widths relaxed to the end
   long contacts = 0;          ///< contact pairs at the end
   GuardCounters guard;
   long pull_through_events = -1;  ///< centreline crossings found by the auditor; -1 when it did not run

@@ -1,9 +1,12 @@
 // skein pattern: patterns tiled, emitted, relaxed (free period, yarn weights), written back as charts and words
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -47,11 +50,12 @@ TEST(Cli, PatternFreePeriodReportsTheRelaxedGauge) {
   for (const auto& p : skein::workflow::read_bcc(dir / "e.bcc").points) elo = std::min(elo, p.x()), ehi = std::max(ehi, p.x());
   EXPECT_NEAR(hi - lo, ehi - elo + 2 * (repeat[0].get<double>() - 6.0), 0.05);
   // Refused, naming the option, with nothing written.
-  const std::array<std::pair<const char*, const char*>, 6> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
+  const std::array<std::pair<const char*, const char*>, 7> refusals = {{{"--relax --free-period --tiled", "needs the periodic patch"},
                                                                          {"--relax --stop-rule force --backend cuda", "runs on the CPU only"},
                                                                          {"--relax --free-period --period-tolerance 0", "period tolerance"},
                                                                          {"--relax --free-period xy --period-method bracket", "finds one free length"},
                                                                          {"--relax --period-method bracket", "--period-method"},
+                                                                         {"--relax --free-period --period-method bracket --stop-rule leaf", "force stop rule"},
                                                                          {"--relax --k-stretch -1", "--k-stretch: must be in [0, 1e+09], found -1"}}};
   // --period with --free-period is where the period starts: the log's first row has 0.8 of the emitted width.
   r = run_skein("pattern " + patterns + "/stockinette.knit -o " + (dir / "start.bcc").string() + " --relax --free-period --period 0.8x1 --max-steps 5 --log " +
@@ -247,4 +251,24 @@ TEST(Cli, AYarnWeightRelaxesToItsGaugeAtItsCompressedContactAndMundensLoopLength
   const auto kept = nlohmann::json::parse(slurp(dir / "t.json"));
   EXPECT_FALSE(kept["fabric"].contains("take_up_to_munden"));
   EXPECT_GT(kept["free_period"]["against_asked"]["loop_length"].get<double>(), 1.05);
+}
+
+TEST(Cli, PatternStopsOnCtrlCAfterItsStepAndWritesNoYarn) {
+  // SIGINT ends a relaxation after the step in progress (a sweep's case too: it runs the same command): the report
+  // says interrupted, the log is whole up to there, and no relaxed yarn is written.
+  ScratchDir dir;
+  const pid_t pid = spawn_skein({"pattern", std::string(SKEIN_PATTERNS_DIR) + "/rib-2x2.knit", "--relax", "--free-period", "--period-method", "bracket",
+                                 "--take-up", "0.8", "--max-steps", "1000000", "-o", (dir / "r.bcc").string(), "--report", (dir / "r.json").string(),
+                                 "--log", (dir / "r.csv").string()},
+                                dir / "run.log");
+  const auto rows = [&] {
+    std::ifstream in(dir / "r.csv");
+    return std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
+  };
+  for (int i = 0; i < 1200 && rows() < 50; ++i) ::usleep(50000);  // 50 steps logged
+  ::kill(pid, SIGINT);
+  EXPECT_EQ(exit_code(pid), 128 + SIGINT) << slurp(dir / "run.log");
+  const auto report = nlohmann::json::parse(slurp(dir / "r.json"));
+  EXPECT_EQ(report.at("stopped_by"), "interrupted");
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.bcc"));
 }

@@ -57,6 +57,9 @@ TEST(Sweep, FileMistakesAreRefusedBeforeAnyWorkNamingTheKey) {
            {R"({"patterns": [")" + stock + R"("], "relax": {"period_tolerance": 0.01}})", "key 'relax.period_tolerance': is the free period's stop rule"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"period_method": "bracket"}})", "key 'relax.period_method': is how the free period relaxes"},
            {R"({"patterns": [")" + stock + R"("], "relax": {"free_period": "x", "period_method": "newton"}})", "key 'relax.period_method'"},
+           {R"({"patterns": [")" + stock + R"("], "relax": {"free_period": "xy", "period_method": "bracket"}})", "bracket finds one free length"},
+           {R"({"patterns": [")" + stock + R"("], "relax": {"free_period": "x", "period_method": "bracket", "stop_rule": "leaf"}})",
+            "bracket judges each width by the force stop rule"},
            {R"({"patterns": [")" + stock + R"(", )", "is not valid JSON"},
            {R"({"patterns": [")" + stock + R"("], "gamma": [1E400]})", "number overflow"},  // found by CI's fuzzing
        }) {

@@ -113,6 +113,14 @@ TEST(PeriodSearch, AuditsEveryStepAndEveryStretch) {
   EXPECT_EQ(run.pull_through_events, 0);
   EXPECT_EQ(run.steps, 3000);
   EXPECT_EQ(run.stopped_by, StopReason::StepCap);
+  EXPECT_FALSE(run.converged);
+  // Cut short, it keeps a width it finished, not the one it was relaxing, and the state is at that width.
+  EXPECT_GE(run.period_trials, 1);
+  EXPECT_NE(run.period(0, 0), widths.back());
+  EXPECT_NE(std::find(widths.begin(), widths.end() - 1, run.period(0, 0)), widths.end() - 1);
+  EXPECT_EQ(state.period(0, 0), run.period(0, 0));
+  options.stop_rule = StopRule::Leaf;  // Leaf's relative rule would judge later widths by the first one's forces
+  EXPECT_THROW(options.validate(), skein::Error);
 }
 
 TEST(PeriodSearch, FindsOneFreeLengthOnly) {
