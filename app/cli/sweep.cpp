@@ -20,6 +20,7 @@
 #include "common/error.hpp"
 #include "common/input_file.hpp"
 #include "json_keys.hpp"
+#include "relax/yarn_relax.hpp"
 #include "stitchmesh/fabric.hpp"
 #include "stitchmesh/pattern.hpp"
 
@@ -76,12 +77,22 @@ std::vector<std::string> relax_arguments(const Keys& k) {
   if (k.has("period_method") && std::find(args.begin(), args.end(), "--free-period") == args.end())
     k.fail(k.name("period_method"), "is how the free period relaxes: give free_period too");
   option("period_method", "--period-method", k.choice("period_method", "frame", {"frame", "bracket"}));
-  if (k.has("period_method") && k.choice("period_method", "frame", {"frame", "bracket"}) == "bracket" &&
-      k.choice("free_period", "x", {"x", "y", "xy"}) == "xy")
-    k.fail(k.name("period_method"), "bracket finds one free length: give free_period \"x\" or \"y\"");
-  if (k.has("period_method") && k.choice("period_method", "frame", {"frame", "bracket"}) == "bracket" && k.has("stop_rule") &&
-      k.choice("stop_rule", "force", workflow::yarn_option("stop_rule").choices) == "leaf")
-    k.fail(k.name("period_method"), "bracket judges each width by the force stop rule: leave stop_rule out or give \"force\"");
+  if (k.has("period_method")) {
+    // The combination checked by the relaxer's own rules, so that the file is refused before any case runs.
+    relax::YarnRelaxOptions combination;
+    combination.stop_rule = relax::parse_stop_rule(k.choice("stop_rule", "force", workflow::yarn_option("stop_rule").choices));
+    const std::string axes = k.choice("free_period", "x", {"x", "y", "xy"});
+    combination.period.free = true;
+    combination.period.free_x = axes != "y";
+    combination.period.free_y = axes != "x";
+    combination.period.method = k.choice("period_method", "frame", {"frame", "bracket"}) == "bracket" ? relax::PeriodOptions::Method::Bracket
+                                                                                                       : relax::PeriodOptions::Method::Frame;
+    try {
+      combination.validate();
+    } catch (const Error& e) {
+      k.fail(k.name("period_method"), e.place() + " " + e.rule());
+    }
+  }
   if (!k.flag("audit", true)) args.push_back("--no-audit");
   option("k_bend", "--k-bend", number_text(k.option("k_bend", 0)));
   option("k_contact", "--k-contact", number_text(k.option("k_contact", 0)));

@@ -73,11 +73,9 @@ class PeriodSearchRelaxer final : public YarnRelaxer {
 public:
   PeriodSearchRelaxer(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options)
       : m_system(system), m_targets(targets), m_options(options) {
-    options.validate();
+    options.validate();  // one free length, no shear, the force stop rule (PeriodOptions, YarnRelaxOptions)
     if (!options.period.free || options.period.method != PeriodOptions::Method::Bracket)
       throw Error("", "--period-method bracket", "needs a free period");
-    if (options.period.free_x == options.period.free_y || options.period.shear)
-      throw Error("", "--period-method bracket", "finds one free length (--free-period x or y, without --shear); frame relaxes both");
     const auto& map = targets.periodic;
     if (map.virtual_points.empty() || map.cells.size() != map.virtual_points.size())
       throw Error("", "--free-period", "needs a periodic patch (skein pattern --relax without --tiled)");
