@@ -22,11 +22,21 @@ const WidthTrial& WidthSearch::result() const {
   return m_best;
 }
 
+double WidthSearch::trial_force_tolerance(double loosest) const {
+  const double floor = 20 * m_tolerance;
+  if (m_confirming || (m_low_set && m_high_set)) return std::min(loosest, floor);  // near the root: every sign counts
+  if (m_best.width == 0) return loosest;
+  return std::min(loosest, std::max(10 * std::abs(m_best.stress), floor));
+}
+
 double WidthSearch::next(const WidthTrial& trial) {
   if (!std::isfinite(trial.stress)) return 0;  // over, not converged: no trial to go on from
   ++m_trials;
-  if (m_trials == 1 || std::abs(trial.stress) < std::abs(m_best.stress)) m_best = trial;
-  if (std::abs(trial.stress) <= m_tolerance) {
+  const bool within = std::abs(trial.stress) <= m_tolerance;
+  m_confirming = within && trial.force_tolerance > 20 * m_tolerance * (1 + 1e-9);
+  if (m_confirming) return trial.width;  // relaxed too loosely to tell the stress from noise: relax it again, tighter
+  if (m_best.width == 0 || std::abs(trial.stress) < std::abs(m_best.stress)) m_best = trial;
+  if (within) {
     m_converged = m_within = true;
     m_last = trial;
     return 0;
@@ -82,7 +92,6 @@ public:
     m_axis = options.period.free_x ? 0 : 1;
     m_inner = options;
     m_inner.period.free = false;
-    m_inner.force_tolerance = std::min(options.force_tolerance, options.period.trial_force_tolerance);
   }
 
   YarnRelaxReport run(YarnState& state, const std::function<void(const YarnStepLog&)>& on_step) override {
@@ -106,6 +115,7 @@ public:
     for (;;) {
       auto inner = m_inner;
       inner.lbfgs_first_trust = first_trust;
+      inner.force_tolerance = std::min(m_options.force_tolerance, search.trial_force_tolerance(m_options.period.trial_force_tolerance));
       if (m_options.max_seconds > 0) inner.max_seconds = std::max(1e-3, m_options.max_seconds - seconds());
       const auto trial_report = make_cpu_yarn_relaxer(m_system, targets, inner)->run(state, [&](const YarnStepLog& s) {
         if (!on_step) return;
@@ -116,10 +126,10 @@ public:
       if (search.trials() == 0) first_peak = trial_report.first_residual_peak;
       report = trial_report;
       if (trial_report.stopped_by != StopReason::Converged) break;  // a cap, an interrupt, a jam: the search ends with the run
-      const WidthTrial trial{width, trial_report.period_stress[m_axis]};
+      const WidthTrial trial{width, trial_report.period_stress[m_axis], inner.force_tolerance};
       const double next = search.next(trial);
-      spdlog::info("free period by bracket: {} {:.4g} mm, stress {:+.3g} B/r³ after {} steps", m_axis == 0 ? "width" : "height", width,
-                   trial.stress, trial_report.steps);
+      spdlog::info("free period by bracket: {} {:.4g} mm, stress {:+.3g} B/r³ after {} steps (relaxed to a force of {:g} B/r³)",
+                   m_axis == 0 ? "width" : "height", width, trial.stress, trial_report.steps, inner.force_tolerance);
       trials.emplace_back(state, trial_report);
       if (next == 0) break;
       const double scale = next / width;

@@ -16,6 +16,7 @@ namespace skein::relax {
 struct WidthTrial {
   double width = 0;   ///< the repeat's length along the free axis [mm]
   double stress = 0;  ///< the free axis's stress at the end, over B / r³ (positive: the repeat would narrow)
+  double force_tolerance = 0;  ///< the force (× B / r³) it was relaxed to; 0: tightly enough to be believed
 };
 
 /// Where to relax next, from converged trials along one axis. Against the stress until a trial's stress
@@ -23,7 +24,8 @@ struct WidthTrial {
 /// twice the last step and 15 % of the width. A bracket so found has the repeat pulled out (stress < 0) at its
 /// narrow end and pushed in at its wide end: an energy minimum lies between. Inside it, regula falsi with the
 /// Illinois halving of an end kept twice (Dowell and Jarratt 1971). Done when a trial's stress is at most
-/// `tolerance`, when the bracket is narrower than `bracket` of the width (converged either way: the stress at
+/// `tolerance` (a trial relaxed more loosely than trial_force_tolerance's floor is relaxed again at it first: its
+/// stress may be noise), when the bracket is narrower than `bracket` of the width (converged either way: the stress at
 /// the bracket's ends can then be several times the tolerance, or far more where it jumps, as at a rib's wall), or
 /// when the width would leave a quarter to four times the start or a stress is not finite (not converged).
 class WidthSearch {
@@ -38,23 +40,30 @@ public:
   /// stays small and nearly flat, the smallest stress can lie far outside the final bracket.
   const WidthTrial& result() const;
   int trials() const { return m_trials; }
+  /// The force tolerance (× B / r³) for the next width's relaxation: `loosest` while every stress so far is large,
+  /// tighter as the search nears the root, so that the noise a trial leaves in its stress (about a twentieth of
+  /// its force tolerance, measured) stays below the stress it must read the sign of: ten times the smallest
+  /// stress seen, never below twenty times the tolerance (where that noise is the tolerance itself), and that
+  /// floor once the root is bracketed or a trial's stress is to be confirmed.
+  double trial_force_tolerance(double loosest) const;
 
 private:
   double m_start, m_tolerance, m_bracket;
   WidthTrial m_best, m_last, m_low, m_high;  // m_low: stress < 0, the narrow end; m_high: stress > 0
-  bool m_low_set = false, m_high_set = false, m_converged = false, m_within = false;
+  bool m_low_set = false, m_high_set = false, m_converged = false, m_within = false, m_confirming = false;
   int m_trials = 0, m_kept_low = 0, m_kept_high = 0;
   double m_step = 0;
 };
 
 /// The relaxer of a free period by WidthSearch (PeriodOptions::Method::Bracket): one free length, no shear. Every
 /// width is relaxed by the CPU relaxer with the period fixed, converged by the run's stop rule with the force
-/// tolerance at most PeriodOptions::trial_force_tolerance (a rib's plateau stress is about 0.007 B/r³ under
-/// tension, and trials stopped at the run's 0.5 B/r³ leave noise of that size in it), from the last
-/// trial's points stretched to it: an affine map of the whole patch, copies and frozen points too, which moves
-/// no yarn through another. Ends with the result()'s points and period. Steps, the step and time caps and
-/// interrupts count over all trials; the log and the report see one run. A run cut short (a cap, an interrupt, a
-/// jam) ends at the search's best finished width, not the one it was relaxing.
+/// tolerance at most WidthSearch::trial_force_tolerance(PeriodOptions::trial_force_tolerance): a rib's stress
+/// under tension is within a hundredth of B/r³ of zero over a fifth of its width, and a trial stopped at the run's
+/// 0.5 B/r³ leaves noise of 0.005 B/r³ in it, at 0.1 B/r³ still enough to stop two starts 20 % apart. Each trial
+/// starts from the last one's points stretched to its width: an affine map of the whole patch, copies and frozen
+/// points too, which moves no yarn through another. Ends with the result()'s points and period. Steps, the step
+/// and time caps and interrupts count over all trials; the log and the report see one run. A run cut short (a
+/// cap, an interrupt, a jam) ends at the search's best finished width, not the one it was relaxing.
 std::unique_ptr<YarnRelaxer> make_period_search(const YarnSystem& system, const ShapeTargets& targets, const YarnRelaxOptions& options);
 
 }  // namespace skein::relax

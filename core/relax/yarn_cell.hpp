@@ -77,8 +77,8 @@ struct PeriodOptions {
   enum class Method { Frame, Bracket } method = Method::Frame;
   /// Bracket: converged too when the stress-free length is bracketed within this share of it.
   double bracket = 5e-3;
-  /// Bracket: each width's relaxation stops at this force tolerance (× B / r³) when the run's is looser
-  /// (period_search.hpp says why).
+  /// Bracket: the loosest force tolerance (× B / r³) a width is relaxed to when the run's is looser; trials
+  /// near the stress-free width are relaxed tighter (WidthSearch::trial_force_tolerance says why).
   double trial_force_tolerance = 0.1;
   void validate() const;    ///< throws skein::Error for a tolerance that is not positive or no length free
 };
