@@ -61,9 +61,9 @@ Item make(Item::Kind kind, const std::string& written, int column, const std::st
 }
 
 // The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
-const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif", "c4f", "c4b",
-                              "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
-const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "psso", "ktbl2tog", "dpk"};
+const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "skp", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif",
+                              "psso", "p2sso", "c4f", "c4b", "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
+const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "ktbl2tog", "dpk"};
 
 int edit_distance(const std::string& a, const std::string& b) {
   std::vector<int> row(b.size() + 1);
@@ -218,8 +218,10 @@ private:
     const char* wrong_side;
   };
   const Decrease* decrease(std::smatch& m) {
-    // Three into one stack as two do: k3tog's leftmost loop lies on top (d123), sssk's rightmost (d321).
+    // Three into one stack as two do: k3tog's leftmost loop lies on top (d123), sssk's rightmost (d321). skp (slip,
+    // knit, pass the slipped stitch over) leans left as ssk does, its right loop on top: one model for both.
     static const Decrease kDecreases[] = {{"k2tog", "d12k", "d12p"}, {"p2tog", "d12p", "d12k"}, {"ssk", "d21k", "d21p"}, {"ssp", "d21p", "d21k"},
+                                          {"skpo?", "d21k", "d21p"},
                                           {"k3tog", "d123k", "d123p"}, {"p3tog", "d123p", "d123k"}, {"sssk", "d321k", "d321p"},
                                           {"sssp", "d321p", "d321k"}};
     for (const auto& d : kDecreases)
@@ -229,6 +231,37 @@ private:
   void add(std::vector<Item>& items, Item item, int count) {
     if (count < 1 || count > 1000) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': 1 to 1000 stitches");
     for (int i = 0; i < count; ++i) items.push_back(item);
+  }
+
+  /// "psso" and "p2sso", as books write skp, sk2p and s2kp out: the slipped stitch (or two) passed over the one
+  /// worked after it. "sl1, k1, psso" is skp (the model of ssk, d21k; "sl1, p1, psso" the purl's), "sl1, k2tog,
+  /// psso" is sk2p and "sl2, k1, p2sso" s2kp, the centred double decrease. The items they name, the last read in
+  /// this group or repeat (a "*" between stops them), become that one stitch.
+  void pass_over(std::vector<Item>& items, size_t at, const std::string& written, bool two) {
+    static const std::regex slip_one(R"(sl\s*1?(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(?:wyib|wyif))?)", std::regex::icase);
+    static const std::regex slip_two(R"(sl\s*2(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(?:wyib|wyif))?)", std::regex::icase);
+    static const std::regex knit_one(R"(k1?)", std::regex::icase), purl_one(R"(p1?)", std::regex::icase);
+    const size_t slips = two ? 2 : 1, n = items.size();
+    const std::string how = "'" + written + "' passes the slipped stitch" + (two ? "es" : "") +
+                            " over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or 'sl2, k1, p2sso' (s2kp)";
+    if (n < slips + 1) fail(at, how + ", within one group");
+    const Item& worked = items[n - 1];
+    const bool single = worked.kind == Item::Stitch && (std::regex_match(worked.written, knit_one) || std::regex_match(worked.written, purl_one));
+    const bool centred = worked.kind == Item::Stitch && (two ? std::regex_match(worked.written, knit_one) : worked.written == "k2tog");
+    if (!(single && !two) && !centred) fail(at, how + "; here '" + worked.written + "' is worked after");
+    for (size_t i = n - 1 - slips; i < n - 1; ++i)
+      if (items[i].kind != Item::Stitch || !std::regex_match(items[i].written, two ? slip_two : slip_one)) fail(at, how + "; here no " + (two ? "sl2" : "sl1") + " comes before");
+    Item out = items[n - 1 - slips];
+    const std::string said = out.written + ", " + worked.written + ", " + written;
+    if (centred) {
+      if (!m_rs) fail(at, "'" + said + "' on a wrong-side row has no stitch model yet (work it from the right side, or write the row from the right side)");
+      out.type = kCentred;  // a model only between two yarn-overs (pair_lace)
+    } else {
+      out.type = (worked.written[0] == 'k') == m_rs ? "d21k" : "d21p";
+    }
+    out.written = said;
+    items.resize(n - 1 - slips);
+    items.push_back(out);
   }
 
   /// "(k1, p1) in next st", "[k1, yo, k1] into the same stitch": two or three stitches worked into one loop below,
@@ -344,7 +377,7 @@ private:
         const bool knit = m[1].str()[0] == 'k';
         items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
         if (m.size() > 2 && m[2].matched) items.back().leave = m[3].matched ? count_of(m[3].str()) : 1;  // "k to last st": one
-      } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(wyib|wyif))?)", m)) {
+      } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p)(?![a-z0-9]))?(?:\s*(wyib|wyif))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const int n = m[1].length() ? count_of(m[1].str()) : 1;
         const bool front = m[2].matched && m[2].str() == "wyif";  // with the yarn toward the knitter
@@ -398,6 +431,9 @@ private:
       } else if (const Decrease* d = decrease(m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, d->written, d->right_side, d->wrong_side));
+      } else if (match(R"(p(2?)sso)", m)) {
+        m_pos += static_cast<size_t>(m.length(0));
+        pass_over(items, at, m.str(0), m[1].length() > 0);
       } else if (match(R"(sk2po?|s2kp2?|cdd)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)

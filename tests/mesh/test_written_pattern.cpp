@@ -162,7 +162,7 @@ TEST(WrittenPattern, ACableOnAWrongSideRowCrossesAsTheSameCableOnARightSideRow) 
 TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
-            "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'p', 'yo'? (patterns/FORMAT.md lists what is read)");
+            "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'skp', 'p'? (patterns/FORMAT.md lists what is read)");
   EXPECT_EQ(error("Row 1: k2, m1l, k2.\n"), "p.txt: line 1, column 12: 'm1l' is a knitting abbreviation skein has no stitch model for yet; the nearest increases are 'kfb' and a yarn-over");
   EXPECT_EQ(error("Row 1: knit.\nRow 3: purl.\n"), "p.txt: line 2: row 3 comes where row 2 was expected (rows are numbered from 1, in order)");
   EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
@@ -325,6 +325,35 @@ TEST(WrittenPattern, YarnOverIncreasesAndThreeWayDecreases) {
   // Garter lace: "k2tog, yo" from the wrong side is a purl decrease beside its yarn-over from the front (2up, ysp).
   EXPECT_EQ(ws_of("K1, k2tog, yo, k1."), "k k k k / p 2up p / ");
   EXPECT_EQ(ws_of("K1, yo, ssk, k1."), "k k k k / p ysp p / ");
+}
+
+// Decreases as older stitch dictionaries write them out: the slipped stitch passed over ("sl 1, k1, psso", Walker's
+// skp), read as the abbreviations they spell, and slips written without a comma before the next stitch.
+TEST(WrittenPattern, PassedSlipStitchesAreTheDecreasesTheySpell) {
+  const auto rows_of = [](const std::string& row) { return rows_text(mesh::parse_pattern("Row 1 (RS): " + row + "\nRow 2: Purl.\n", "a.txt")); };
+  EXPECT_EQ(rows_of("*K1, yo, sl1, k1, psso, k1; rep from *."), rows_of("*K1, yo, ssk, k1; rep from *."));
+  EXPECT_EQ(rows_of("*K1, yo, sl 1 kwise, k1, psso, k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1, yo, skp, k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1, yo, sl1, k2tog, psso, yo, k2; rep from *."), rows_of("*K1, yo, sk2p, yo, k2; rep from *."));
+  EXPECT_EQ(rows_of("*K1, yo, sl2, k1, p2sso, yo, k2; rep from *."), "k k y3y k / k k k k k k / ");
+  EXPECT_EQ(rows_of("[k1, yo, sl1, k1, psso] twice."), "ys k ys k / k k k k k k / ");
+  // On a wrong-side row, worked from the back: a purl decrease from the front, as ssk's there.
+  EXPECT_EQ(rows_text(mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2 (WS): *P1, yo, sl1, k1, psso; rep from *.\n", "w.txt")),
+            rows_text(mesh::parse_pattern("Row 1 (RS): Knit.\nRow 2 (WS): *P1, yo, ssk; rep from *.\n", "w.txt")));
+  // "sl1 k1" and "sl 1 p1" with no comma: the slip, then the stitch (the letter after a slip is its knitwise or
+  // purlwise only as a word of its own).
+  EXPECT_EQ(rows_of("*Sl1 k1; rep from *."), rows_of("*Sl1, k1; rep from *."));
+  EXPECT_EQ(rows_of("*Sl 1 p1; rep from *."), rows_of("*Sl1, p1; rep from *."));
+  EXPECT_EQ(rows_of("*K1, yo, sl1 k1 psso, k1; rep from *."), "k ys k / k k k k / ");
+  const auto error = [](const std::string& row) { return error_of([&] { mesh::parse_pattern("Row 1 (RS): " + row + "\nRow 2: Purl.\n", "e.txt"); }); };
+  const std::string how = "'psso' passes the slipped stitch over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or "
+                          "'sl2, k1, p2sso' (s2kp)";
+  EXPECT_EQ(error("*K1, k1, psso, k1; rep from *."), "e.txt: line 1, column 22: " + how + "; here no sl1 comes before");
+  EXPECT_EQ(error("*K1, yo, sl1, k2, psso; rep from *."), "e.txt: line 1, column 31: " + how + "; here 'k2' is worked after");
+  EXPECT_EQ(error("*K1, sl1, [k1, psso] twice; rep from *."), "e.txt: line 1, column 28: " + how + ", within one group");
+  EXPECT_EQ(error("*K1, yo, sl1, k1, p2sso; rep from *."),
+            "e.txt: line 1, column 31: 'p2sso' passes the slipped stitches over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' "
+            "(sk2p) or 'sl2, k1, p2sso' (s2kp); here no sl2 comes before");
 }
 
 // kfb on the right-side rows of a piece, with the stitch counts books write after a row ("(5 sts)", "— 5 sts").
