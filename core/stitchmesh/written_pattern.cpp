@@ -89,6 +89,12 @@ std::string suggestions(const std::string& word) {
   return out;
 }
 
+/// A slip as books write it: "sl1", "sl 1 pwise wyib", "s1", "slip 2 tog kwise", "sl 1 as if to knit"; the count
+/// (1 when none is written) and the side the yarn is held. The letter after it is its knitwise or purlwise only as
+/// a word of its own ("sl1 k1": a slip, then a knit).
+const char* const kSlip =
+    R"((?:slip|sl|s)\s*(\d*)(?:\s*tog(?:ether)?)?(?:\s*(?:knitwise|purlwise|kwise|pwise|as\s+if\s+to\s+(?:knit|purl)|k|p)(?![a-z0-9]))?(?:\s*(wyib|wyif))?)";
+
 /// A centred double decrease (sk2p, s2kp, cdd) before pair_lace gives it a model.
 const std::string kCentred = "centred double decrease";
 
@@ -122,10 +128,12 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
     Item item = items[i];
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
       item.type = "y3y";
+      item.colour = items[i + 1].colour;  // the decrease's colour ("yo, sk2p CC, yo"), as the face's below
       item.written = "yo, " + items[i + 1].written + ", yo";
       i += 2;
     } else if (const char* face = lace_face(i)) {
       item.type = face;
+      item.colour = items[is(i, "yo") ? i + 1 : i].colour;  // the decrease's: "yo, ssk CC" is a face in CC
       item.written = items[i].written + ", " + items[i + 1].written;
       ++i;
     } else if (is(i, "yo") && !out.empty() && plain(out.back())) {
@@ -195,10 +203,18 @@ private:
       return false;  // a word must end where the abbreviation does
     return true;
   }
+  /// Commas, semicolons, full stops and spaces between stitches; hyphens and dashes too, as Walker's Treasuries
+  /// join the steps of one decrease ("sl 1-k1-psso", "sl 1—k2 tog—psso").
   void skip_separators() {
-    while (m_pos < m_text.size() && (std::isspace(static_cast<unsigned char>(m_text[m_pos])) || m_text[m_pos] == ',' || m_text[m_pos] == ';' ||
-                                     m_text[m_pos] == '.'))
-      ++m_pos;
+    for (;;) {
+      if (m_pos < m_text.size() && (std::isspace(static_cast<unsigned char>(m_text[m_pos])) || std::string(",;.-").find(m_text[m_pos]) != std::string::npos)) {
+        ++m_pos;
+      } else if (m_text.compare(m_pos, 3, "\xe2\x80\x93") == 0 || m_text.compare(m_pos, 3, "\xe2\x80\x94") == 0) {
+        m_pos += 3;  // an en or em dash (UTF-8)
+      } else {
+        return;
+      }
+    }
   }
   Item stitch(size_t at, const std::string& written, const std::string& rs, const std::string& ws) {
     Item item;
@@ -220,10 +236,9 @@ private:
   const Decrease* decrease(std::smatch& m) {
     // Three into one stack as two do: k3tog's leftmost loop lies on top (d123), sssk's rightmost (d321). skp (slip,
     // knit, pass the slipped stitch over) leans left as ssk does, its right loop on top: one model for both.
-    static const Decrease kDecreases[] = {{"k2tog", "d12k", "d12p"}, {"p2tog", "d12p", "d12k"}, {"ssk", "d21k", "d21p"}, {"ssp", "d21p", "d21k"},
-                                          {"skpo?", "d21k", "d21p"},
-                                          {"k3tog", "d123k", "d123p"}, {"p3tog", "d123p", "d123k"}, {"sssk", "d321k", "d321p"},
-                                          {"sssp", "d321p", "d321k"}};
+    static const Decrease kDecreases[] = {{R"(k2\s*tog)", "d12k", "d12p"}, {R"(p2\s*tog)", "d12p", "d12k"}, {"ssk", "d21k", "d21p"},
+                                          {"ssp", "d21p", "d21k"}, {"skpo?", "d21k", "d21p"}, {R"(k3\s*tog)", "d123k", "d123p"},
+                                          {R"(p3\s*tog)", "d123p", "d123k"}, {"sssk", "d321k", "d321p"}, {"sssp", "d321p", "d321k"}};
     for (const auto& d : kDecreases)
       if (match(d.written, m)) return &d;
     return nullptr;
@@ -233,35 +248,48 @@ private:
     for (int i = 0; i < count; ++i) items.push_back(item);
   }
 
-  /// "psso" and "p2sso", as books write skp, sk2p and s2kp out: the slipped stitch (or two) passed over the one
-  /// worked after it. "sl1, k1, psso" is skp (the model of ssk, d21k; "sl1, p1, psso" the purl's), "sl1, k2tog,
-  /// psso" is sk2p and "sl2, k1, p2sso" s2kp, the centred double decrease. The items they name, the last read in
-  /// this group or repeat (a "*" between stops them), become that one stitch.
-  void pass_over(std::vector<Item>& items, size_t at, const std::string& written, bool two) {
-    static const std::regex slip_one(R"(sl\s*1?(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(?:wyib|wyif))?)", std::regex::icase);
-    static const std::regex slip_two(R"(sl\s*2(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p))?(?:\s*(?:wyib|wyif))?)", std::regex::icase);
-    static const std::regex knit_one(R"(k1?)", std::regex::icase), purl_one(R"(p1?)", std::regex::icase);
+  /// "psso" and "p2sso" (or "pass slipped st over"), as books write skp, sk2p and s2kp out: the slipped stitch
+  /// (or two, slipped together) passed over the one worked after it. "sl1, k1, psso" is skp (the model of ssk,
+  /// d21k; "sl1, p1, psso" the purl's), "sl1, k2tog, psso" sk2p and "sl2, k1, p2sso" s2kp, the centred double
+  /// decrease. The items they name, the last read in this group or repeat, become that one stitch, in the colour
+  /// of the stitch worked (the loop left on the needle).
+  void pass_over(std::vector<Item>& items, size_t at, const std::string& written, bool two, bool in_group) {
+    static const std::regex knit_one(R"(k1?)", std::regex::icase), purl_one(R"(p1?)", std::regex::icase), k2tog(R"(k2\s*tog)", std::regex::icase);
     const size_t slips = two ? 2 : 1, n = items.size();
     const std::string how = "'" + written + "' passes the slipped stitch" + (two ? "es" : "") +
-                            " over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or 'sl2, k1, p2sso' (s2kp)";
-    if (n < slips + 1) fail(at, how + ", within one group");
+                            " over the one worked after them: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or 'sl2, k1, p2sso' (s2kp)";
+    const auto named = [](const Item& item) { return item.kind == Item::Star ? std::string("a '*'") : item.kind == Item::Group ? std::string("a group") : "'" + item.written + "'"; };
+    const std::string in_group_only = "; in a group it passes over only what the group works before it";
+    if (n == 0) fail(at, how + (in_group ? in_group_only : "; here nothing comes before it"));
     const Item& worked = items[n - 1];
-    const bool single = worked.kind == Item::Stitch && (std::regex_match(worked.written, knit_one) || std::regex_match(worked.written, purl_one));
-    const bool centred = worked.kind == Item::Stitch && (two ? std::regex_match(worked.written, knit_one) : worked.written == "k2tog");
-    if (!(single && !two) && !centred) fail(at, how + "; here '" + worked.written + "' is worked after");
-    for (size_t i = n - 1 - slips; i < n - 1; ++i)
-      if (items[i].kind != Item::Stitch || !std::regex_match(items[i].written, two ? slip_two : slip_one)) fail(at, how + "; here no " + (two ? "sl2" : "sl1") + " comes before");
+    const bool single = !two && worked.kind == Item::Stitch && (std::regex_match(worked.written, knit_one) || std::regex_match(worked.written, purl_one));
+    const bool centred = worked.kind == Item::Stitch && (two ? std::regex_match(worked.written, knit_one) : std::regex_match(worked.written, k2tog));
+    if (!single && !centred) fail(at, how + "; here " + named(worked) + " comes before it");
+    const Item* slip = n >= 2 ? &items[n - 2] : nullptr;
+    const int slipped = slip ? slipped_count(*slip) : 0;
+    if (slipped == 2 && !two) fail(at, how + "; here '" + slip->written + "' slips two: pass them over with 'p2sso'");
+    if (slipped == 1 && two) fail(at, how + "; here '" + slip->written + "' slips one: 'p2sso' passes two slipped together ('sl2, k1, p2sso')");
+    if (slipped != static_cast<int>(slips) || n < slips + 1 || (two && items[n - 3].column != slip->column))
+      fail(at, how + (slip ? "; here " + named(*slip) + " comes before " + named(worked)
+                           : in_group ? in_group_only : "; here nothing comes before " + named(worked)));
     Item out = items[n - 1 - slips];
-    const std::string said = out.written + ", " + worked.written + ", " + written;
+    out.written = out.written + ", " + worked.written + ", " + written;
+    out.colour = worked.colour;
     if (centred) {
-      if (!m_rs) fail(at, "'" + said + "' on a wrong-side row has no stitch model yet (work it from the right side, or write the row from the right side)");
+      if (!m_rs) fail(at, "'" + out.written + "' on a wrong-side row has no stitch model yet (work it from the right side, or write the row from the right side)");
       out.type = kCentred;  // a model only between two yarn-overs (pair_lace)
     } else {
       out.type = (worked.written[0] == 'k') == m_rs ? "d21k" : "d21p";
     }
-    out.written = said;
     items.resize(n - 1 - slips);
     items.push_back(out);
+  }
+  /// How many stitches a slip item slips ("sl1", "s1", "slip 2 tog kwise"): 0 for an item that is no slip.
+  static int slipped_count(const Item& item) {
+    static const std::regex slip(kSlip, std::regex::icase);
+    std::smatch m;
+    if (item.kind != Item::Stitch || !std::regex_match(item.written, m, slip)) return 0;
+    return m[1].length() ? count_of(m[1].str()) : 1;
   }
 
   /// "(k1, p1) in next st", "[k1, yo, k1] into the same stitch": two or three stitches worked into one loop below,
@@ -272,7 +300,7 @@ private:
     std::string type, written;
     for (const auto& item : group.items) {
       // k1, p1, yo, k1 tbl and p1 tbl: one loop each.
-      static const std::regex one_loop(R"((?:k|p)1?|yo1?|(?:k|p)1?\s*tbl)", std::regex::icase);
+      static const std::regex one_loop(R"((?:k|p)1?|yo1?|(?:k|p)1?(?:\s*tbl|-b))", std::regex::icase);
       const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpyxq").find(item.type) != std::string::npos &&
                           std::regex_match(item.written, one_loop);
       if (!single) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
@@ -377,7 +405,7 @@ private:
         const bool knit = m[1].str()[0] == 'k';
         items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
         if (m.size() > 2 && m[2].matched) items.back().leave = m[3].matched ? count_of(m[3].str()) : 1;  // "k to last st": one
-      } else if (match(R"(sl\s*(\d*)(?:\s*(?:knitwise|purlwise|kwise|pwise|k|p)(?![a-z0-9]))?(?:\s*(wyib|wyif))?)", m)) {
+      } else if (match(kSlip, m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const int n = m[1].length() ? count_of(m[1].str()) : 1;
         const bool front = m[2].matched && m[2].str() == "wyif";  // with the yarn toward the knitter
@@ -430,17 +458,19 @@ private:
         items.push_back(stitch(at, m.str(0), knit ? "xk" : "qp", knit ? "pq" : "kx"));
       } else if (const Decrease* d = decrease(m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        items.push_back(stitch(at, d->written, d->right_side, d->wrong_side));
-      } else if (match(R"(p(2?)sso)", m)) {
+        items.push_back(stitch(at, m.str(0), d->right_side, d->wrong_side));
+      } else if (match(R"(p(2?)sso|p\.s\.s\.o\.?|pass\s+(?:the\s+)?(2\s+)?(?:slipped|sl)\s+(?:sts?|stitch(?:es)?)\s+over)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        pass_over(items, at, m.str(0), m[1].length() > 0);
-      } else if (match(R"(sk2po?|s2kp2?|cdd)", m)) {
+        pass_over(items, at, m.str(0), m[1].length() > 0 || m[2].length() > 0, in_group);
+        colour_stitches(items, items.size() - 1);  // "psso CC": the decrease's colour
+        continue;
+      } else if (match(R"(sk2po?|s2kpo?|s2kp2|cdd)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         items.push_back(stitch(at, m.str(0), kCentred, ""));  // a model only between two yarn-overs (pair_lace)
       } else if (match(R"(yo(\d*))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         add(items, stitch(at, "yo", "y", "y"), m[1].length() ? count_of(m[1].str()) : 1);
-      } else if (match(R"((k|p)(\d*)\s*tbl)", m)) {
+      } else if (match(R"((k|p)(\d*)(?:\s*tbl|-b))", m)) {  // Walker writes "k1-b"
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str() == "k";
         // Through the back loop, knit or purl, the loop crosses the same way: a crossed knit (x) or purl (q) from the front.

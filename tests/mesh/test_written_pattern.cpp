@@ -345,15 +345,35 @@ TEST(WrittenPattern, PassedSlipStitchesAreTheDecreasesTheySpell) {
   EXPECT_EQ(rows_of("*Sl1 k1; rep from *."), rows_of("*Sl1, k1; rep from *."));
   EXPECT_EQ(rows_of("*Sl 1 p1; rep from *."), rows_of("*Sl1, p1; rep from *."));
   EXPECT_EQ(rows_of("*K1, yo, sl1 k1 psso, k1; rep from *."), "k ys k / k k k k / ");
+  // As older books write them: Walker's hyphens and dashes between a decrease's steps and "k2 tog" with a space,
+  // "s1", "slip 1 as if to knit", "sl 2 tog kwise", "pass slipped st over", "p.s.s.o.", "k1-b" (through the back loop).
+  EXPECT_EQ(rows_of("*K1, yo, sl 1-k1-psso, k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1, yo, sl 1\u2014k2 tog\u2014psso, yo, k1; rep from *."), rows_of("*K1, yo, sk2p, yo, k1; rep from *."));
+  EXPECT_EQ(rows_of("*K1, yo, s1, k1, psso, k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1, yo, slip 1 as if to knit, k1, pass slipped st over, k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1, yo, sl 2 tog kwise, k1, p2sso, yo, k1; rep from *."), rows_of("*K1, yo, s2kp, yo, k1; rep from *."));
+  EXPECT_EQ(rows_of("*K1, yo, sl 1, k1, p.s.s.o., k1; rep from *."), "k ys k / k k k k / ");
+  EXPECT_EQ(rows_of("*K1-b, p1; rep from *."), rows_of("*K1 tbl, p1; rep from *."));
+  // The decrease is in the colour of the stitch worked, the loop left on the needle; a lace face in its decrease's.
+  const auto coloured = mesh::parse_pattern("MC: cream\nCC: red\nRow 1 (RS): *k1, yo, sl1 CC, k1, psso, k1, sl1, k1, psso CC, yo; rep from *.\nRow 2: Purl.\n",
+                                            "c.txt");
+  EXPECT_EQ(rows_text(coloured), "ys k ys k / k k k k k k / ");
+  EXPECT_EQ(coloured.colours[0], (std::vector<int>{1, 0, 0, 0}));  // as seen from the front: the last worked first
   const auto error = [](const std::string& row) { return error_of([&] { mesh::parse_pattern("Row 1 (RS): " + row + "\nRow 2: Purl.\n", "e.txt"); }); };
-  const std::string how = "'psso' passes the slipped stitch over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or "
+  const std::string how = "passes the slipped stitch over the one worked after them: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or "
                           "'sl2, k1, p2sso' (s2kp)";
-  EXPECT_EQ(error("*K1, k1, psso, k1; rep from *."), "e.txt: line 1, column 22: " + how + "; here no sl1 comes before");
-  EXPECT_EQ(error("*K1, yo, sl1, k2, psso; rep from *."), "e.txt: line 1, column 31: " + how + "; here 'k2' is worked after");
-  EXPECT_EQ(error("*K1, sl1, [k1, psso] twice; rep from *."), "e.txt: line 1, column 28: " + how + ", within one group");
-  EXPECT_EQ(error("*K1, yo, sl1, k1, p2sso; rep from *."),
-            "e.txt: line 1, column 31: 'p2sso' passes the slipped stitches over the one worked after: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' "
-            "(sk2p) or 'sl2, k1, p2sso' (s2kp); here no sl2 comes before");
+  const std::string how2 = "passes the slipped stitches over the one worked after them: 'sl1, k1, psso' (skp), 'sl1, k2tog, psso' (sk2p) or "
+                           "'sl2, k1, p2sso' (s2kp)";
+  EXPECT_EQ(error("*K1, k1, psso, k1; rep from *."), "e.txt: line 1, column 22: 'psso' " + how + "; here 'k1' comes before 'k1'");
+  EXPECT_EQ(error("K1, psso, k3."), "e.txt: line 1, column 17: 'psso' " + how + "; here nothing comes before 'k1'");
+  EXPECT_EQ(error("*Psso, k3; rep from *."), "e.txt: line 1, column 14: 'psso' " + how + "; here a '*' comes before it");
+  EXPECT_EQ(error("K1, sl1, *k1, psso, k2; rep from *."), "e.txt: line 1, column 27: 'psso' " + how + "; here a '*' comes before 'k1'");
+  EXPECT_EQ(error("*K1, yo, sl1, k2, psso; rep from *."), "e.txt: line 1, column 31: 'psso' " + how + "; here 'k2' comes before it");
+  EXPECT_EQ(error("*K1, sl1, [k1, psso] twice; rep from *."),
+            "e.txt: line 1, column 28: 'psso' " + how + "; in a group it passes over only what the group works before it");
+  EXPECT_EQ(error("*K1, yo, sl 2, k1, psso, k1; rep from *."), "e.txt: line 1, column 32: 'psso' " + how + "; here 'sl 2' slips two: pass them over with 'p2sso'");
+  EXPECT_EQ(error("*K1, yo, sl 1, sl 1, k1, p2sso, yo; rep from *."),
+            "e.txt: line 1, column 38: 'p2sso' " + how2 + "; here 'sl 1' slips one: 'p2sso' passes two slipped together ('sl2, k1, p2sso')");
 }
 
 // kfb on the right-side rows of a piece, with the stitch counts books write after a row ("(5 sts)", "— 5 sts").
