@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <unistd.h>
@@ -75,9 +76,9 @@ struct PatternCommand final : Subcommand {
     pat->add_option("--chart-png", pat_chart_png, "the repeat drawn as a knitting chart in the Craft Yarn Council's symbols (patterns/FORMAT.md), as skein "
                                                   "read it; knits and tiles");
     pat->add_option("--write-chart", pat_write_chart, "the repeat as chart text (format chart: the Craft Yarn Council's symbols, patterns/FORMAT.md) that "
-                                                      "skein reads back as the same stitches; knits and tiles");
+                                                      "skein reads back as the same stitches; knits and tiles; - for standard output");
     pat->add_option("--write-instructions", pat_write_instructions, "the repeat as written instructions (\"Row 1 (RS): k2, p2.\") that skein reads back "
-                                                                    "as the same stitches; knits and tiles");
+                                                                    "as the same stitches; knits and tiles; - for standard output");
     pat->add_option("--ids", pat_ids, "also write each control point's stitch face, row and type as CSV (docs/FORMATS.md): knits and tiles, "
                                       "emitted or relaxed --tiled");
     pat->add_option("--log", pat_log, "with --relax: per-step CSV log as relax-yarn writes it");
@@ -150,8 +151,10 @@ struct PatternCommand final : Subcommand {
     // The pattern in the other notations, made now (a stitch no chart can say is refused before any work).
     std::string chart_text, instructions;
     try {
-      if (!pat_write_chart.empty()) check_writable(pat_write_chart), chart_text = mesh::write_chart_pattern(pattern);
-      if (!pat_write_instructions.empty()) check_writable(pat_write_instructions), instructions = mesh::write_written_pattern(pattern);
+      if (!pat_write_chart.empty() && pat_write_chart != "-") check_writable(pat_write_chart);
+      if (!pat_write_chart.empty()) chart_text = mesh::write_chart_pattern(pattern);
+      if (!pat_write_instructions.empty() && pat_write_instructions != "-") check_writable(pat_write_instructions);
+      if (!pat_write_instructions.empty()) instructions = mesh::write_written_pattern(pattern);
     } catch (const Error& e) {
       if (!e.file().empty()) throw;
       throw Error(pat_in, e.place(), e.rule());
@@ -163,6 +166,10 @@ struct PatternCommand final : Subcommand {
       }
       for (const auto& written : {std::pair{pat_write_chart, chart_text}, {pat_write_instructions, instructions}}) {
         if (written.first.empty()) continue;
+        if (written.first == "-") {
+          std::cout << written.second << std::flush;  // to read or pipe at once: "skein pattern P.txt --write-chart -"
+          continue;
+        }
         write_file_atomically(written.first, [&](std::ostream& out) { out << written.second; });  // (clang 14: no structured binding in a lambda)
         spdlog::info("wrote {}", written.first);
       }

@@ -132,6 +132,12 @@ TEST(Cli, PatternWritesItselfAsAChartAndAsWrittenInstructions) {
   ASSERT_EQ(a.status + b.status + c.status, 0) << a.output << b.output << c.output;
   EXPECT_EQ(slurp(dir / "a.bcc"), slurp(dir / "b.bcc"));
   EXPECT_EQ(slurp(dir / "w.bcc"), slurp(dir / "b.bcc"));
+  // "-" is standard output, not a file named "-".
+  r = run_skein("pattern " + patterns + "/cable-4.knit --write-instructions - --write-chart -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("Row 1 (RS): p2, C4B, p2."), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("key C C4B"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists("-"));
   // A stitch no chart can say is refused naming the file, the row and the stitch, and nothing is written.
   r = run_skein("pattern " + patterns + "/twisted-rib.knit --write-chart " + (dir / "e.txt").string());
   EXPECT_EQ(r.status, 2);
