@@ -121,9 +121,9 @@ void Document::auto_label(int border_edge) {
   apply(tr("Auto-label"), with_labels(mesh::auto_label(*m_input, start)));
 }
 
-void Document::trace_field(int border_edge) {
+void Document::trace_field(const mesh::KnitStart& start, const std::optional<mesh::KnitStart>& end) {
   require_input();
-  auto traced = mesh::trace_stitch_mesh(*m_input, {border_edge, {}}, m_state.stitch_size);
+  auto traced = mesh::trace_stitch_mesh(*m_input, start, m_state.stitch_size, end);
   EditState state;
   state.stitch_size = m_state.stitch_size;
   state.stitch = mesh::tessellate(traced.mesh, traced.labels, traced.values);

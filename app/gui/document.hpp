@@ -10,6 +10,7 @@
 
 #include "relax/yarn_curves.hpp"
 #include "stitchmesh/edits.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/pattern.hpp"
 #include "stitchmesh/project.hpp"
 #include "workflow/yarn_settings.hpp"
@@ -69,10 +70,11 @@ public:
 
   // Labeling (Yuksel 2012 §5.1)
   void auto_label(int border_edge = -1);  ///< -1: the lowest border edge
-  /// Traces the rows on any surface from the knitting field (mesh::trace_stitch_mesh, from `border_edge` or
-  /// the lowest border edge): the traced rows, one face a stitch, replace the input mesh, labeled, with the
-  /// stitch mesh generated. Like opening a file, this clears the undo history.
-  void trace_field(int border_edge = -1);
+  /// Traces the rows on any surface from the knitting field (mesh::trace_stitch_mesh, from `start`: a border
+  /// edge, a point, or by default the lowest border edge; toward `end` when given): the traced rows, one face a
+  /// stitch, replace the input mesh, labeled, with the stitch mesh generated. Like opening a file, this clears
+  /// the undo history.
+  void trace_field(const mesh::KnitStart& start = {}, const std::optional<mesh::KnitStart>& end = {});
   void label_first_row(int border_edge);
   void label_next_row(int course_edge);
   void flip_row(int row);

@@ -226,6 +226,9 @@ void MainWindow::build_actions() {
   tool(label, tr("&Orbit"), "toolOrbit", Tool::Orbit, tr("Left-drag turns the view"))->setChecked(true);
   add(label, tr("&Auto-label"), "autoLabel", [this] { attempt([&] { m_doc.auto_label(); }); }, QKeySequence(tr("Ctrl+L")), true);
   add(label, tr("&Trace rows from the knitting field (any surface)"), "traceField", [this] { attempt([&] { m_doc.trace_field(); }); }, {}, true);
+  tool(label, tr("Trace rows from &here"), "toolTraceFrom", Tool::TraceFrom,
+       tr("Click a border edge (or, on a closed surface, a point) where knitting starts: rows are traced from there by the knitting "
+          "field; Shift+click first where they should end"));
   tool(label, tr("&First row"), "toolFirstRow", Tool::FirstRow, tr("Click a border edge: its border becomes the first row"));
   tool(label, tr("&Next row"), "toolNextRow", Tool::NextRow, tr("Click a course edge of a labeled row: label the row across it"));
   tool(label, tr("F&lip row"), "toolFlipRow", Tool::FlipRow, tr("Click a face: flip the wale direction of its row"));
@@ -362,7 +365,8 @@ void MainWindow::set_tool(Tool tool) {
   for (auto* a : m_tools->actions())
     if (a->data().toInt() == static_cast<int>(tool)) a->setChecked(true);
   m_view->set_left_orbits(tool == Tool::Orbit);
-  const bool on_input = tool == Tool::FirstRow || tool == Tool::NextRow || tool == Tool::FlipRow || tool == Tool::EdgeValue || tool == Tool::MarkWale;
+  const bool on_input = tool == Tool::FirstRow || tool == Tool::NextRow || tool == Tool::FlipRow || tool == Tool::EdgeValue || tool == Tool::MarkWale ||
+                        tool == Tool::TraceFrom;
   if (on_input && m_layer != Layer::Input) set_layer(Layer::Input);
   if (!on_input && tool != Tool::Orbit && m_layer != Layer::Stitch) set_layer(Layer::Stitch);
 }
@@ -574,6 +578,21 @@ void MainWindow::on_pressed(const Hit& hit, Qt::KeyboardModifiers modifiers) {
         });
         return;
       case Tool::MarkWale: attempt([&] { m_doc.toggle_wale_mark(edge); }); return;
+      case Tool::TraceFrom: {
+        // A border edge where the click is, else the point clicked (a closed surface, or inside a piece).
+        mesh::KnitStart at;
+        if (m_doc.input()->is_border(edge)) at.border_edge = edge;
+        else at.point = hit.point;
+        if (modifiers & Qt::ShiftModifier) {
+          m_trace_end = at;
+          statusBar()->showMessage(at.point ? tr("Rows will end at the point clicked: now click where they start")
+                                            : tr("Rows will end at border edge %1: now click where they start").arg(edge));
+          return;
+        }
+        attempt([&] { m_doc.trace_field(at, m_trace_end); });
+        m_trace_end.reset();
+        return;
+      }
       default: return;
     }
   }

@@ -2,6 +2,7 @@
 #include <functional>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <QElapsedTimer>
@@ -11,6 +12,7 @@
 #include "document.hpp"
 #include "relax_jobs.hpp"
 #include "scene_geometry.hpp"
+#include "stitchmesh/knit_field.hpp"
 #include "stitchmesh/pattern.hpp"
 
 class QAction;
@@ -39,6 +41,7 @@ enum class Tool {
   CollapseCourse,  ///< click a course edge: collapse it
   AddWale,         ///< click a stitch: split it with a wale edge
   RemoveWale,      ///< click a wale edge: merge its two stitches
+  TraceFrom,       ///< click a border edge or a point: trace rows from the knitting field from there (Shift+click: where they end)
   ShiftWale,       ///< click near one end of a wale edge: move that end right (Shift: left)
 };
 
@@ -122,6 +125,7 @@ private:
   Document m_doc;
   Viewport* m_view = nullptr;
   Tool m_tool = Tool::Orbit;
+  std::optional<mesh::KnitStart> m_trace_end;  ///< Tool::TraceFrom: where the rows end, Shift+clicked before the start
   Layer m_layer = Layer::Input;
   Coloring m_coloring = Coloring::StitchType;
   QString m_paint_type = "p";

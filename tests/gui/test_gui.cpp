@@ -12,6 +12,7 @@
 #include <QDoubleSpinBox>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QStatusBar>
 #include <QDir>
 #include <QImage>
 #include <QLabel>
@@ -266,6 +267,43 @@ private slots:
     QCOMPARE(static_cast<int>(state.stitch->faces.size()), 110);  // 10 stitches a row, 11 rows (6 x 5 mm)
     QVERIFY(w.emit_yarn());
     check_shot(w, "traced-triangles", {}, 0.05);
+
+    // Label > Trace rows from here: a click near a border edge starts the rows there; Shift+click first names
+    // where they end. From the left side, the first row runs up the left side.
+    const auto near_border = [&](const Eigen::Vector3d& middle) {
+      const auto& input = *w.document().input();
+      for (int e = 0; e < input.num_edges(); ++e) {
+        const auto [a, b] = input.edge_vertices(e);
+        if (!input.is_border(e) || (0.5 * (input.point(a) + input.point(b)) - middle).norm() > 1e-9) continue;
+        const int face = input.edge_uses(e).front().face;
+        Eigen::Vector3d c = Eigen::Vector3d::Zero();
+        for (int v : input.face(face)) c += input.point(v);
+        return w.viewport().to_screen(0.8 * middle + 0.2 * c / input.face(face).size());
+      }
+      return QPoint(-1, -1);
+    };
+    QVERIFY(w.open_file(dir.filePath("tris.obj")));
+    w.set_tool(gui::Tool::TraceFrom);
+    QTest::mouseClick(&w.viewport(), Qt::LeftButton, {}, near_border({0, 35, 0}));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(w.document().state().stitch);
+    const auto& left = *w.document().state().stitch;
+    QCOMPARE(static_cast<int>(left.faces.size()), 110);
+    const auto left_rows = mesh::faces_by_row(left);
+    for (int f : left_rows.front()) QVERIFY(centroid(left, f).x() < 10);
+    // From the bottom toward the top, named by a Shift+click first: traced, labeled, the status saying so first.
+    QVERIFY(w.open_file(dir.filePath("tris.obj")));
+    QTest::mouseClick(&w.viewport(), Qt::LeftButton, Qt::ShiftModifier, near_border({25, 60, 0}));
+    QVERIFY(w.statusBar()->currentMessage().contains("now click where they start"));
+    QVERIFY(!w.document().state().stitch);
+    QTest::mouseClick(&w.viewport(), Qt::LeftButton, {}, near_border({25, 0, 0}));
+    QVERIFY2(w.last_error().isEmpty(), qPrintable(w.last_error()));
+    QVERIFY(w.document().state().labels && w.document().state().stitch);
+    QVERIFY(mesh::validate_labels(*w.document().input(), *w.document().state().labels).valid());
+    const auto& up = *w.document().state().stitch;
+    const auto up_rows = mesh::faces_by_row(up);
+    for (int f : up_rows.front()) QVERIFY(centroid(up, f).y() < 10);
+    for (int f : up_rows.back()) QVERIFY(centroid(up, f).y() > 50);
   }
 
   void a_pattern_in_colour_colours_the_garment_and_its_yarn() {
