@@ -58,8 +58,9 @@ private:
 /// The relaxer of a free period by WidthSearch (PeriodOptions::Method::Bracket): one free length, no shear. Every
 /// width is relaxed by the CPU relaxer with the period fixed, converged by the run's stop rule with the force
 /// tolerance at most WidthSearch::trial_force_tolerance(PeriodOptions::trial_force_tolerance): a rib's stress
-/// under tension is within a hundredth of B/r³ of zero over a fifth of its width, and a trial stopped at the run's
-/// 0.5 B/r³ leaves noise of 0.005 B/r³ in it, at 0.1 B/r³ still enough to stop two starts 20 % apart. Each trial
+/// under tension is about a hundredth of B/r³ over a fifth of its width, and a trial leaves noise of about a
+/// twentieth of its force tolerance in it: 0.02 B/r³ at the run's 0.5, and at 0.1 still 0.005, enough to stop two
+/// starts of the 1x1 rib 16 % apart. Each trial
 /// starts from the last one's points stretched to its width: an affine map of the whole patch, copies and frozen
 /// points too, which moves no yarn through another. Ends with the result()'s points and period. Steps, the step
 /// and time caps and interrupts count over all trials; the log and the report see one run. A run cut short (a

@@ -82,7 +82,7 @@ TEST(PeriodSearch, UnderTensionSeedFindsOneWidthNearStockinettes) {
 }
 
 // The "rib at least 20 % narrower than stockinette", converged, and the same width from two starts. The
-// 1x1 rib's stress under tension is within a hundredth of B/r³ of zero from 0.59 to 0.71 of stockinette's width;
+// 1x1 rib's stress under tension is about a hundredth of B/r³ from 0.59 to 0.71 of stockinette's width;
 // relaxed to a force of 0.1 B/r³ at every width, the search read noise of that size as the stress and stopped at
 // 0.71 from one start and 0.60 from the other. Relaxed more tightly as the stress gets small
 // (WidthSearch::trial_force_tolerance), both starts end at about 0.61, within 1 %.
