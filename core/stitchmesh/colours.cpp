@@ -57,7 +57,8 @@ std::optional<PatternColour> read_colour_declaration(const std::string& line, bo
   std::smatch h;
   bool have = false;
   if (!std::regex_search(body, h, hex)) std::regex_search(body, h, bare_hex);  // "1f2a44": a code without its '#'
-  if (!h.empty() && (h.str(0)[0] == '#' || std::any_of(h.str(0).begin(), h.str(0).end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))) {
+  const std::string code = h.empty() ? std::string() : h.str(0);  // one string: begin() and end() of the same one
+  if (!code.empty() && (code[0] == '#' || std::any_of(code.begin(), code.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))) {
     if (h[1].length() != 6 || !std::all_of(h[1].first, h[1].second, [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)); }))
       throw Error(source, where, "a colour code is # and six hex digits (#f0e6cf), found '" + h.str(0) + "'");
     c.srgb = from_hex(static_cast<unsigned>(std::stoul(h[1].str(), nullptr, 16)));
