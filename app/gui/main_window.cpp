@@ -82,6 +82,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
   connect(&m_doc, &Document::opened, this, [this] {
     m_selected.clear();
+    m_trace_end.reset();  // an end Shift+clicked on the mesh before, whose edge ids this one does not share
     set_layer(m_doc.state().stitch ? Layer::Stitch : Layer::Input);
     m_view->fit();
   });
@@ -361,6 +362,7 @@ void MainWindow::build_docks() {
 }
 
 void MainWindow::set_tool(Tool tool) {
+  if (tool != m_tool) m_trace_end.reset();
   m_tool = tool;
   for (auto* a : m_tools->actions())
     if (a->data().toInt() == static_cast<int>(tool)) a->setChecked(true);
