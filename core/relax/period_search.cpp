@@ -132,11 +132,13 @@ public:
                    m_axis == 0 ? "width" : "height", width, trial.stress, trial_report.steps, inner.force_tolerance);
       trials.emplace_back(state, trial_report);
       if (next == 0) break;
-      const double scale = next / width;
-      const Eigen::Matrix3Xd before = state.points;
-      scale_period(map, state.points, m_axis == 0 ? scale : 1, m_axis == 1 ? scale : 1);
-      // An affine stretch moves no yarn through another; the auditor checks it as it checks every step.
-      if (m_options.audit) state.pull_through_events += static_cast<long>(auditor().crossings(before, state.points).size());
+      if (next != width) {  // else the same width relaxed again, tighter: nothing to stretch
+        const double scale = next / width;
+        const Eigen::Matrix3Xd before = state.points;
+        scale_period(map, state.points, m_axis == 0 ? scale : 1, m_axis == 1 ? scale : 1);
+        // An affine stretch moves no yarn through another; the auditor checks it as it checks every step.
+        if (m_options.audit) state.pull_through_events += static_cast<long>(auditor().crossings(before, state.points).size());
+      }
       state.velocities.setZero();
       first_trust = std::min(first_trust, 0.01);  // the state is tight now: L-BFGS starts with small moves
       width = width_of();  // next, as the map holds it
@@ -147,7 +149,8 @@ public:
       // The search's result so far (the run's counters kept): a trial cut short ends at no width of its own.
       const YarnState last = state;
       const YarnRelaxReport cut = report;
-      const auto& [result_state, result_report] = *std::min_element(trials.begin(), trials.end(), [&](const auto& a, const auto& b) {
+      // From the last back: a width relaxed again to confirm its stress is kept over its looser first relaxation.
+      const auto& [result_state, result_report] = *std::min_element(trials.rbegin(), trials.rend(), [&](const auto& a, const auto& b) {
         return std::abs(a.second.period(m_axis, m_axis) - search.result().width) < std::abs(b.second.period(m_axis, m_axis) - search.result().width);
       });
       state = result_state;

@@ -206,8 +206,9 @@ private:
   /// Commas, semicolons, full stops and spaces between stitches; hyphens and dashes too, as Walker's Treasuries
   /// join the steps of one decrease ("sl 1-k1-psso", "sl 1—k2 tog—psso").
   void skip_separators() {
+    static constexpr std::string_view kSeparators = ",;.-";
     for (;;) {
-      if (m_pos < m_text.size() && (std::isspace(static_cast<unsigned char>(m_text[m_pos])) || std::string(",;.-").find(m_text[m_pos]) != std::string::npos)) {
+      if (m_pos < m_text.size() && (std::isspace(static_cast<unsigned char>(m_text[m_pos])) || kSeparators.find(m_text[m_pos]) != std::string_view::npos)) {
         ++m_pos;
       } else if (m_text.compare(m_pos, 3, "\xe2\x80\x93") == 0 || m_text.compare(m_pos, 3, "\xe2\x80\x94") == 0) {
         m_pos += 3;  // an en or em dash (UTF-8)
