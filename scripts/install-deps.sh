@@ -11,6 +11,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   libtinygltf-dev
   libcgal-dev
+  libsuitesparse-dev libopenblas0-serial
   libexpat1-dev
   libopenvdb-dev libboost-iostreams-dev
 )

@@ -208,6 +208,7 @@ json smock(SmockArgs args) {
                        {"seconds", cloth_seconds},
                        {"energy", cloth->energy},
                        {"barrier_reach_mm", cloth->reach},
+                       {"barrier_stiffness", cloth->barrier_stiffness},
                        {"smallest_distance_mm", cloth->smallest_distance},
                        {"largest_stretch", cloth->largest_stretch},
                        {"target_rms_mm", cloth->target_error},

@@ -4,11 +4,15 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <Eigen/Geometry>
+#include <omp.h>
+
+#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -143,14 +147,33 @@ Vec3 difference(const Pair& p, const Eigen::Matrix3Xd& x) {
   return r;
 }
 
+/// A pair of elements that may come within the barrier's reach over a step: point a and triangle b, or edges a, b.
+struct Candidate {
+  bool point_triangle;
+  int a, b;
+};
+
+/// The pairs whose boxes swept from x over x + dir (none: at x alone), padded by `reach`, overlap: every pair that
+/// comes within `reach` anywhere on the step's straight path is among them.
+std::vector<Candidate> step_candidates(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd* dir, double reach) {
+  std::vector<Candidate> found;
+  candidate_pairs(f, x, dir, 0.5 * reach, [&](bool point_triangle, int a, int b) { found.push_back({point_triangle, a, b}); });
+  return found;
+}
+
+/// Of the candidates, the pairs within `radius` at x.
+std::vector<Pair> pairs_within(const Fabric& f, const Eigen::Matrix3Xd& x, const std::vector<Candidate>& candidates, double radius) {
+  std::vector<Pair> pairs;
+  for (const auto& c : candidates) {
+    const Pair p = closest_pair(f, x, c.point_triangle, c.a, c.b);
+    if (difference(p, x).norm() < radius) pairs.push_back(p);
+  }
+  return pairs;
+}
+
 /// Pairs of elements (point-triangle, edge-edge) that share no vertex and lie within `radius` at x.
 std::vector<Pair> near_pairs(const Fabric& f, const Eigen::Matrix3Xd& x, double radius) {
-  std::vector<Pair> pairs;
-  candidate_pairs(f, x, nullptr, radius, [&](bool point_triangle, int a, int b) {
-    const Pair p = closest_pair(f, x, point_triangle, a, b);
-    if (difference(p, x).norm() < radius) pairs.push_back(p);
-  });
-  return pairs;
+  return pairs_within(f, x, step_candidates(f, x, nullptr, radius), radius);
 }
 
 /// IPC's log barrier b(d) = -κ (d - d̂)² ln(d / d̂) below d̂, and its first two derivatives.
@@ -164,12 +187,24 @@ struct Barrier {
 };
 
 /// The incremental potential of one frame (eq. 9 with our fabric terms): proximal + stretch + bend + w_p eq. 11 +
-/// w_s eq. 10 + barrier. `grad` and `hessian` (PSD: each spring's and pair's part projected) when asked.
+/// w_s eq. 10 + barrier. `grad` when asked; `hess` gets the Hessian of the terms that change with x (PSD: each
+/// spring's and pair's part projected), constant_hessian() that of the quadratic ones.
 struct Potential {
   const Fabric& f;
   const ClothOptions& o;
   Barrier barrier;
   Eigen::Matrix3Xd anchor;  ///< the frame's start
+
+  /// The Hessian of the proximal term, the bending and eq. 11: the same at every x.
+  void constant_hessian(Triplets& hess) const {
+    for (int v = 0; v < f.n; ++v)
+      for (int c = 0; c < 3; ++c) hess.emplace_back(3 * v + c, 3 * v + c, o.inertia * f.area[v]);
+    for (int k = 0; k < f.bend.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(f.bend, k); it; ++it)
+        for (int c = 0; c < 3; ++c) hess.emplace_back(3 * static_cast<int>(it.row()) + c, 3 * static_cast<int>(it.col()) + c, o.k_bend * it.value());
+    for (int v : f.guided)
+      for (int c = 0; c < 3; ++c) hess.emplace_back(3 * v + c, 3 * v + c, 2 * o.w_pos);
+  }
 
   double energy(const Eigen::Matrix3Xd& x, const std::vector<Pair>& pairs, Eigen::Matrix3Xd* grad, Triplets* hess) const {
     double e = 0;
@@ -179,8 +214,6 @@ struct Potential {
       const Vec3 d = x.col(v) - anchor.col(v);
       e += 0.5 * mu * d.squaredNorm();
       if (grad) grad->col(v) += mu * d;
-      if (hess)
-        for (int c = 0; c < 3; ++c) hess->emplace_back(3 * v + c, 3 * v + c, mu);
     }
     const auto spring = [&](int a, int b, double rest, double k) {  // k/2 (l - L)^2 / L
       const Vec3 d = x.col(a) - x.col(b);
@@ -213,17 +246,11 @@ struct Potential {
       e += 0.5 * o.k_bend * xc.dot(kx);
       if (grad) grad->row(c) += o.k_bend * kx.transpose();
     }
-    if (hess)
-      for (int k = 0; k < f.bend.outerSize(); ++k)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(f.bend, k); it; ++it)
-          for (int c = 0; c < 3; ++c) hess->emplace_back(3 * static_cast<int>(it.row()) + c, 3 * static_cast<int>(it.col()) + c, o.k_bend * it.value());
     for (std::size_t i = 0; i < f.guided.size(); ++i) {  // eq. 11
       const int v = f.guided[i];
       const Vec3 d = x.col(v) - f.targets.col(static_cast<Eigen::Index>(i));
       e += o.w_pos * d.squaredNorm();
       if (grad) grad->col(v) += 2 * o.w_pos * d;
-      if (hess)
-        for (int c = 0; c < 3; ++c) hess->emplace_back(3 * v + c, 3 * v + c, 2 * o.w_pos);
     }
     for (const auto& p : pairs) {
       const Vec3 r = difference(p, x);
@@ -255,13 +282,109 @@ double pair_ccd(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3
   return additive_ccd(y, p, point_triangle);
 }
 
-/// The largest step fraction along `dir` after which no pair of elements has come closer than a tenth of its
-/// distance at x (additive_ccd over every pair whose boxes swept over the step overlap).
-double collision_bound(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& dir) {
+/// The largest step fraction along the step `dir` after which none of the candidates has come closer than a tenth of
+/// its distance at x (additive_ccd).
+double collision_bound(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& dir, const std::vector<Candidate>& candidates) {
   double alpha = 1;
-  candidate_pairs(f, x, &dir, 0.0, [&](bool point_triangle, int a, int b) { alpha = std::min(alpha, pair_ccd(f, x, dir, point_triangle, a, b)); });
+  for (const auto& c : candidates) alpha = std::min(alpha, pair_ccd(f, x, dir, c.point_triangle, c.a, c.b));
   return alpha;
 }
+
+/// The Newton system H d = -g of the fabric, solved by CHOLMOD's supernodal Cholesky factorization. The unknowns
+/// are put once in a fill-reducing order (METIS's nested dissection or AMD, whichever fills less) of the pattern
+/// without contact; the barrier's pairs add few entries to it, so the order is kept and each new pattern costs only
+/// a symbolic analysis. The Hessian's constant part (proximal, bending, eq. 11) is assembled once.
+class NewtonSystem {
+public:
+  NewtonSystem(const Potential& potential, const Eigen::Matrix3Xd& x) : m_size(3 * x.cols()) {
+    Triplets constant, varying;
+    potential.constant_hessian(constant);
+    Eigen::Matrix3Xd grad;
+    potential.energy(x, {}, &grad, &varying);  // the springs' pattern
+    m_order = fill_reducing_order(constant, varying);
+    m_position.resize(m_order.size());
+    for (std::size_t k = 0; k < m_order.size(); ++k) m_position[m_order[k]] = static_cast<int>(k);
+    m_constant = assemble(constant);
+    m_solver.cholmod().nmethods = 1;
+    m_solver.cholmod().method[0].ordering = CHOLMOD_NATURAL;  // already ordered
+    m_solver.cholmod().print = 0;                             // a breakdown is handled below, not printed
+  }
+
+  /// The Newton step for the gradient `grad` and the varying part of the Hessian; false when H cannot be factored.
+  bool solve(Triplets& varying, const Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& step) {
+    Eigen::SparseMatrix<double> h = m_constant + assemble(varying);
+    const bool same_pattern = h.nonZeros() == m_analysed.nonZeros() &&
+                              std::equal(h.outerIndexPtr(), h.outerIndexPtr() + h.cols() + 1, m_analysed.outerIndexPtr()) &&
+                              std::equal(h.innerIndexPtr(), h.innerIndexPtr() + h.nonZeros(), m_analysed.innerIndexPtr());
+    if (!same_pattern) {
+      m_solver.analyzePattern(h);
+      m_analysed = h;
+    }
+    // H is positive definite in exact arithmetic (every term's part projected, the proximal term on the
+    // diagonal), but a pair pressed to micrometres gives the barrier a curvature 10^15 times the fabric's, and the
+    // factorization can break down in rounding. Then the diagonal is raised a little (Levenberg), as often as
+    // needed, so the step shortens toward the gradient's instead of stopping the run.
+    double shift = 0;
+    for (int attempt = 0;; ++attempt) {
+      const int levels = omp_get_max_active_levels();
+      omp_set_max_active_levels(0);  // CHOLMOD's small OpenMP regions cost more in wake-ups than they save
+      m_solver.factorize(h);
+      omp_set_max_active_levels(levels);
+      if (m_solver.info() == Eigen::Success) break;
+      if (attempt == 12) return false;
+      double largest = 0;
+      for (Eigen::Index k = 0; k < m_size; ++k) largest = std::max(largest, std::abs(h.coeff(k, k)));
+      const double raise = shift == 0 ? 1e-10 * largest : 9 * shift;  // the total shift grows tenfold each time
+      for (Eigen::Index k = 0; k < m_size; ++k) h.coeffRef(k, k) += raise;
+      shift += raise;
+    }
+    Eigen::VectorXd g(m_size);
+    for (Eigen::Index k = 0; k < m_size; ++k) g[k] = grad.data()[m_order[k]];
+    const Eigen::VectorXd solved = m_solver.solve(g);
+    step.resize(3, m_size / 3);
+    for (Eigen::Index k = 0; k < m_size; ++k) step.data()[m_order[k]] = -solved[k];
+    return true;
+  }
+
+private:
+  /// The upper triangle (CHOLMOD's supernodal factorization reads it without a transpose), in the solver's order.
+  Eigen::SparseMatrix<double> assemble(Triplets& entries) const {
+    std::erase_if(entries, [](const auto& t) { return t.row() > t.col(); });
+    if (!m_position.empty())
+      for (auto& t : entries) {
+        const int r = m_position[t.row()], c = m_position[t.col()];
+        t = {std::min(r, c), std::max(r, c), t.value()};
+      }
+    Eigen::SparseMatrix<double> m(m_size, m_size);
+    m.setFromTriplets(entries.begin(), entries.end());
+    return m;
+  }
+
+  /// new unknown k = old unknown order[k]
+  std::vector<int> fill_reducing_order(Triplets constant, Triplets varying) const {
+    constant.insert(constant.end(), varying.begin(), varying.end());
+    Eigen::SparseMatrix<double> lower = assemble(constant);
+    cholmod_common common;
+    cholmod_start(&common);
+    common.nmethods = 2;
+    common.method[0].ordering = CHOLMOD_METIS;
+    common.method[1].ordering = CHOLMOD_AMD;
+    cholmod_sparse a = Eigen::viewAsCholmod(lower);
+    a.stype = 1;
+    cholmod_factor* factor = cholmod_analyze(&a, &common);
+    std::vector<int> order(static_cast<std::size_t>(m_size));
+    std::iota(order.begin(), order.end(), 0);  // if both fail: the natural order, slower but right
+    if (factor && common.status == CHOLMOD_OK) std::copy_n(static_cast<const int*>(factor->Perm), order.size(), order.begin());
+    cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+    return order;
+  }
+
+  Eigen::Index m_size;
+  std::vector<int> m_order, m_position;
+  Eigen::SparseMatrix<double> m_constant, m_analysed;
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> m_solver;
+};
 
 Fabric build_fabric(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, int n, std::vector<int>& grid_vertex,
                     Eigen::Matrix3Xd& rest) {
@@ -385,53 +508,55 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
   Potential potential{f, options, Barrier{cloth.reach, options.k_barrier}, cloth.rest};
   Eigen::Matrix3Xd x = cloth.rest;
   const double max_move = 4 * h, settled = options.tolerance * h;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  Eigen::SparseMatrix<double> analysed;  ///< the matrix the solver's symbolic analysis was made for
+  NewtonSystem system(potential, x);
+  std::vector<Pair> pairs = near_pairs(f, x, cloth.reach);  // the barrier's pairs at x, kept with it
+  constexpr double kDeep = 0.1, kStiffest = 1e4;             // κ doubles below kDeep d̂, up to kStiffest times its start
+  double last_closest = cloth.reach;
   for (int frame = 0; frame < options.frames; ++frame) {
     potential.anchor = x;
     ++cloth.frames;
     for (int it = 0; it < options.newton_per_frame; ++it) {
-      const auto pairs = near_pairs(f, x, cloth.reach);
       Eigen::Matrix3Xd grad;
       Triplets hess;
       const double e0 = potential.energy(x, pairs, &grad, &hess);
       if (!std::isfinite(e0)) throw Error(pattern.name, "frame " + std::to_string(frame), "the fabric's energy is not finite (a bug: please report it)");
-      Eigen::SparseMatrix<double> hm(3 * f.n, 3 * f.n);
-      hm.setFromTriplets(hess.begin(), hess.end());
-      // The symbolic analysis (ordering, elimination tree) is kept while the barrier's pairs leave the pattern as it was.
-      const bool same_pattern = hm.nonZeros() == analysed.nonZeros() && hm.cols() == analysed.cols() &&
-                                std::equal(hm.outerIndexPtr(), hm.outerIndexPtr() + hm.cols() + 1, analysed.outerIndexPtr()) &&
-                                std::equal(hm.innerIndexPtr(), hm.innerIndexPtr() + hm.nonZeros(), analysed.innerIndexPtr());
-      if (!same_pattern) {
-        solver.analyzePattern(hm);
-        analysed = hm;
-      }
-      solver.factorize(hm);
-      if (solver.info() != Eigen::Success) throw Error(pattern.name, "frame " + std::to_string(frame), "the Newton system could not be factored");
-      const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(grad.data(), grad.size());
-      Eigen::VectorXd step = -solver.solve(g);
-      Eigen::Matrix3Xd dir = Eigen::Map<Eigen::Matrix3Xd>(step.data(), 3, f.n);
+      Eigen::Matrix3Xd dir;
+      if (!system.solve(hess, grad, dir)) throw Error(pattern.name, "frame " + std::to_string(frame), "the Newton system could not be factored");
       const double largest = dir.colwise().norm().maxCoeff();
       ++cloth.newton_iterations;
       if (largest < settled) break;
       if (largest > max_move) dir *= max_move / largest;
-      double alpha = collision_bound(f, x, dir);
+      // One broad phase a step: the pairs that may come within reach on its path, for the collision bound and for
+      // the barrier at every point of the line search.
+      const auto candidates = step_candidates(f, x, &dir, cloth.reach);
+      double alpha = collision_bound(f, x, dir, candidates);
       if (alpha < 1) ++cloth.ccd_limited_steps;
       const double slope = (grad.array() * dir.array()).sum();
       double e1 = e0;
       Eigen::Matrix3Xd trial;
+      std::vector<Pair> trial_pairs;
       for (int halving = 0; halving < 30; ++halving, alpha *= 0.5) {
         trial = x + alpha * dir;
-        e1 = potential.energy(trial, near_pairs(f, trial, cloth.reach), nullptr, nullptr);
+        trial_pairs = pairs_within(f, trial, candidates, cloth.reach);
+        e1 = potential.energy(trial, trial_pairs, nullptr, nullptr);
         if (e1 <= e0 + 1e-4 * alpha * slope) break;
       }
       if (!(e1 <= e0)) break;  // no descent left along this direction: the frame has settled
       x = trial;
+      pairs = std::move(trial_pairs);
+      // IPC's adaptive barrier stiffness (Li et al. 2020, §4.3): a pair that keeps closing in deep inside the reach
+      // means the barrier is too weak for the forces pressing it; doubling κ pushes back before every step is
+      // cut short by the collision bound.
+      double closest = cloth.reach;
+      for (const auto& p : pairs) closest = std::min(closest, difference(p, x).norm());
+      if (closest < kDeep * cloth.reach && closest < last_closest && potential.barrier.k < kStiffest * options.k_barrier) potential.barrier.k *= 2;
+      last_closest = closest;
     }
     const double moved = (x - potential.anchor).colwise().norm().maxCoeff();
     if (moved < settled) break;
   }
   cloth.positions = x;
+  cloth.barrier_stiffness = potential.barrier.k;
   potential.anchor = x;
   cloth.energy = potential.energy(x, near_pairs(f, x, cloth.reach), nullptr, nullptr);
   cloth.smallest_distance = 2 * cloth.reach;

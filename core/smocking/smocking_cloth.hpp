@@ -23,10 +23,10 @@ struct ClothOptions {
   double w_sew = 1;            ///< eq. 10: each stitch toward its lifted length
   double inertia = 1;          ///< proximal weight of each frame (the incremental potential's mass / Δt²), per mm² of fabric
   double reach = -1;           ///< the barrier's reach d̂ [mm]; below 0: the embedding's fabric thickness τ
-  double k_barrier = 1;        ///< the barrier's stiffness κ
+  double k_barrier = 1;        ///< the barrier's stiffness κ at the start (IPC's adaptive κ doubles it as pairs press in)
   int frames = 100;            ///< as the paper's 100 frames at most
   int newton_per_frame = 20;
-  double tolerance = 1e-3;     ///< a frame has settled when no point moved more than this × the fine spacing
+  double tolerance = 1e-2;     ///< a frame has settled when a Newton step moves no point more than this × the fine spacing
 
   /// Throws skein::Error naming the option and the rule broken.
   void validate() const;
@@ -39,6 +39,7 @@ struct Cloth {
   std::vector<int> grid_vertex;            ///< per pattern grid point, its fine vertex
   int frames = 0, newton_iterations = 0;
   double reach = 0;                        ///< d̂ used
+  double barrier_stiffness = 0;            ///< κ at the end (it doubles while a pair keeps closing in deep in the reach)
   double energy = 0;
   double smallest_distance = 0;            ///< between non-adjacent triangles' closest elements at the end [mm]
   double largest_stretch = 0;              ///< max over fabric edges of length / rest - 1
