@@ -66,7 +66,7 @@ void write_cloth(const smocking::Cloth& cloth, const std::string& path) {
   Eigen::Matrix3Xd normals = Eigen::Matrix3Xd::Zero(3, cloth.positions.cols());
   GltfPrimitive fabric;
   fabric.material = "fabric";
-  fabric.linear_rgb = {0.78, 0.70, 0.86};  // draw_cloth's light cloth colour
+  fabric.linear_rgb = {0.78, 0.70, 0.86};  // draw_smocked_fabric's light cloth colour
   fabric.double_sided = true;
   for (const auto& t : cloth.triangles) {
     const Eigen::Vector3d n = (cloth.positions.col(t[1]) - cloth.positions.col(t[0])).cross(cloth.positions.col(t[2]) - cloth.positions.col(t[0]));
@@ -83,21 +83,6 @@ void write_cloth(const smocking::Cloth& cloth, const std::string& path) {
   }
   mesh.primitives.push_back(std::move(fabric));
   write_gltf_mesh(mesh, path);
-}
-
-/// The smocked fabric from the front and at a slant from the side (the pleats' depth), a light cloth colour.
-render::Image draw_cloth(const smocking::Cloth& cloth) {
-  std::vector<render::Polygon> polygons;
-  for (const auto& t : cloth.triangles) {
-    render::Polygon p;
-    for (int v : t) p.points.push_back(cloth.positions.col(v));
-    p.color = {0.78f, 0.70f, 0.86f};
-    polygons.push_back(std::move(p));
-  }
-  render::View view;
-  view.directions = {{0.3, -0.45, -1.0}, {1.0, -0.6, -0.35}};
-  view.outlines = false;
-  return render::draw(polygons, view);
 }
 
 }  // namespace
@@ -236,7 +221,7 @@ json smock(SmockArgs args) {
   if (!args.png.empty()) render::write_png(render::draw_smocking(pattern, e), args.png);
   if (!args.chart_png.empty()) render::write_png(render::draw_shrinkage_chart(e, o.gamma), args.chart_png);
   if (!args.cloth.empty()) write_cloth(*cloth, args.cloth);
-  if (!args.cloth_png.empty()) render::write_png(draw_cloth(*cloth), args.cloth_png);
+  if (!args.cloth_png.empty()) render::write_png(render::draw_smocked_fabric(*cloth), args.cloth_png);
   if (!args.report.empty()) write_json(report, args.report);
   for (const auto& path : {args.output, args.obj, args.png, args.chart_png, args.report, args.cloth, args.cloth_png})
     if (!path.empty() && path != "-") spdlog::info("wrote {}", path);

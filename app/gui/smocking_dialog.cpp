@@ -9,6 +9,9 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPushButton>
+#include <QSpinBox>
+
+#include <chrono>
 
 #include "common/error.hpp"
 #include "preview_layout.hpp"
@@ -36,23 +39,39 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
   m_pull->setObjectName("pull");
   m_pull->addItems({tr("Across (horizontal)"), tr("Down (vertical)"), tr("Along each stitch")});
   m_pull->setToolTip(tr("The pulling direction: stitches along it shorten, stitches across it do not (eq. 5)"));
-  auto* gather_button = new QPushButton(tr("&Gather"), this);
-  gather_button->setObjectName("gather");
-  connect(gather_button, &QPushButton::clicked, this, [this] { gather(); });
+  m_gather = new QPushButton(tr("&Gather"), this);
+  m_gather->setObjectName("gather");
+  connect(m_gather, &QPushButton::clicked, this, [this] { gather(); });
+  m_subdivisions = new QSpinBox(this);
+  m_subdivisions->setObjectName("subdivisions");
+  m_subdivisions->setRange(2, 4);  // 4: about 20 s on two cores; finer from the command line (--subdivisions)
+  m_subdivisions->setSingleStep(2);
+  m_subdivisions->setToolTip(tr("Fine squares per side of a pattern square in the 3-D fabric"));
+  m_cloth = new QPushButton(tr("Smock in &3-D"), this);
+  m_cloth->setObjectName("cloth");
+  m_cloth->setToolTip(tr("Drape a fine fabric to the gathered pattern, never through itself (Zhou 2024 §4.2)"));
+  connect(m_cloth, &QPushButton::clicked, this, [this] { smock_in_3d(); });
   auto* controls = new QHBoxLayout;
   controls->addWidget(open);
   auto* form = new QFormLayout;
   form->addRow(tr("Gamma"), m_gamma);
   form->addRow(tr("Pull"), m_pull);
+  form->addRow(tr("Subdivisions"), m_subdivisions);
   controls->addLayout(form);
-  controls->addWidget(gather_button);
+  controls->addWidget(m_gather);
+  controls->addWidget(m_cloth);
   const auto preview = lay_out_preview(this, controls, tr("Open a smocking pattern (.smock), then Gather."));
   m_picture = preview.picture;
   m_summary = preview.summary;
   resize(1100, 560);
 }
 
+SmockingDialog::~SmockingDialog() {
+  if (m_worker.joinable()) m_worker.join();
+}
+
 bool SmockingDialog::open_pattern(const QString& path) {
+  if (busy()) return false;
   try {
     // A drawing (front stitches solid, back dashed) is read as Italian smocking with its grid found from it.
     m_pattern = path.endsWith(".svg", Qt::CaseInsensitive) ? smocking::read_smocking_svg(path.toStdString())
@@ -75,6 +94,7 @@ bool SmockingDialog::open_pattern(const QString& path) {
 }
 
 void SmockingDialog::gather() {
+  if (busy()) return;
   if (!m_pattern) {
     m_summary->setText(tr("Open a smocking pattern first."));
     return;
@@ -94,7 +114,55 @@ void SmockingDialog::gather() {
   show_picture();
 }
 
+void SmockingDialog::smock_in_3d() {
+  if (busy()) return;
+  gather();
+  if (!m_embedding) return;
+  if (m_worker.joinable()) m_worker.join();
+  m_gather->setEnabled(false);
+  m_cloth->setEnabled(false);
+  m_done = false;
+  m_summary->setText(tr("Smocking in 3-D..."));
+  smocking::ClothOptions options;
+  options.subdivisions = m_subdivisions->value();
+  m_worker = std::thread([this, pattern = *m_pattern, embedding = *m_embedding, options] {
+    QImage picture;
+    QString summary;
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      const auto cloth = smocking::smock_cloth(pattern, embedding, smocking::lift(embedding), options);
+      const long crossings = smocking::exact_intersections(cloth);
+      const auto image = render::draw_smocked_fabric(cloth, 500);  // the flat and gathered panels' size
+      picture = QImage(image.rgb.data(), image.width, image.height, image.width * 3, QImage::Format_RGB888).copy();
+      summary = tr("3-D fabric: %1 points, %2 Newton steps in %3 frames, %4 s; the stitching points %5 mm (RMS) from their places, "
+                   "closest non-neighbours %6 mm, %7 intersecting triangle pairs")
+                    .arg(cloth.positions.cols())
+                    .arg(cloth.newton_iterations)
+                    .arg(cloth.frames)
+                    .arg(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0, 'f', 1)
+                    .arg(cloth.target_error, 0, 'f', 2)
+                    .arg(cloth.smallest_distance, 0, 'f', 3)
+                    .arg(crossings);
+    } catch (const std::exception& e) {
+      summary = QString::fromStdString(e.what());
+    }
+    QMetaObject::invokeMethod(this, [this, picture, summary] { finish(picture, summary); });
+  });
+}
+
+void SmockingDialog::finish(const QImage& image, const QString& summary) {
+  if (!image.isNull()) {
+    m_picture->setPixmap(QPixmap::fromImage(image));
+    m_has_fabric = true;
+  }
+  m_summary->setText(summary);
+  m_gather->setEnabled(true);
+  m_cloth->setEnabled(true);
+  m_done = true;
+}
+
 void SmockingDialog::show_picture() {
+  m_has_fabric = false;
   // The flat pattern alone until gathered: an embedding with no steps taken draws the pattern twice.
   const auto e = m_embedding ? *m_embedding : smocking::make_mass_spring_system(*m_pattern, -1);
   const auto image = render::draw_smocking(*m_pattern, e, 500);

@@ -90,4 +90,19 @@ Image draw_shrinkage_chart(const smocking::Embedding& e, double gamma, int pixel
   return draw_flat(s, pixels);
 }
 
+Image draw_smocked_fabric(const smocking::Cloth& cloth, int pixels) {
+  std::vector<Polygon> polygons;
+  for (const auto& t : cloth.triangles) {
+    Polygon p;
+    for (int v : t) p.points.push_back(cloth.positions.col(v));
+    p.color = {0.78f, 0.70f, 0.86f};
+    polygons.push_back(std::move(p));
+  }
+  View view;
+  view.directions = {{0.3, -0.45, -1.0}, {1.0, -0.6, -0.35}};
+  view.outlines = false;
+  view.panel = pixels;
+  return draw(polygons, view);
+}
+
 }  // namespace skein::render

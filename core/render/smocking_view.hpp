@@ -3,6 +3,7 @@
 // colours (Fig. 5): stitching points orange, front stitches and their midpoints green, back ones purple, pleat
 // points grey, beads as blue rings; and the threads' shortening over the iterations (Fig. 17).
 #include "render/raster.hpp"
+#include "smocking/smocking_cloth.hpp"
 #include "smocking/smocking_embed.hpp"
 
 namespace skein::render {
@@ -13,5 +14,9 @@ Image draw_smocking(const smocking::SmockingPattern& pattern, const smocking::Em
 
 /// D(X)/D(X̄) against the iterations, with the goal γ as a dashed line; `pixels` wide.
 Image draw_shrinkage_chart(const smocking::Embedding& embedding, double gamma, int pixels = 700);
+
+/// The smocked fabric in 3-D (smock_cloth) from the front and at a slant from the side (the pleats' depth), in a
+/// light cloth colour; `pixels` a panel.
+Image draw_smocked_fabric(const smocking::Cloth& cloth, int pixels = 900);
 
 }  // namespace skein::render

@@ -201,6 +201,15 @@ private slots:
     QVERIFY(dialog->embedding()->shrinkage() <= 0.5 * 1.01);
     QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // the flat pattern and the gathered fabric
     QVERIFY2(summary->text().startsWith("reached"), qPrintable(summary->text()));
+    // The fabric in 3-D, on a worker thread: front and side, never through itself.
+    QTest::mouseClick(dialog->findChild<QPushButton*>("cloth"), Qt::LeftButton);
+    QVERIFY(dialog->busy());
+    QVERIFY(!dialog->findChild<QPushButton*>("gather")->isEnabled());
+    QTRY_VERIFY_WITH_TIMEOUT(!dialog->busy(), 60000);
+    QVERIFY2(dialog->has_fabric(), qPrintable(summary->text()));
+    QVERIFY2(summary->text().contains("861 points") && summary->text().contains(", 0 intersecting triangle pairs"), qPrintable(summary->text()));
+    QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // front and side, as large
+    QVERIFY(dialog->findChild<QPushButton*>("gather")->isEnabled());
     // A drawing: four stitches of a zigzag, every second one dashed (a back stitch).
     const QString drawing = write_file(dir, "d.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<line x1=\"0\" y1=\"10\" x2=\"10\" y2=\"0\"/>\n"
                                                     "<line x1=\"10\" y1=\"0\" x2=\"20\" y2=\"10\" stroke-dasharray=\"2\"/>\n"
