@@ -48,6 +48,7 @@ struct Item {
   int times = 1;           ///< Group
   int colour = -1;         ///< Stitch, Cable, Fill: index into the pattern's palette (issue 26), -1 for none said
   int leave = 0;           ///< Fill: "k to last N sts" leaves N
+  bool made = false;       ///< Stitch: a loop made from the bar between two stitches (m1l, m1p): `type` its crossed loop
   std::vector<Item> items; ///< Group
 };
 
@@ -62,8 +63,8 @@ Item make(Item::Kind kind, const std::string& written, int column, const std::st
 
 // The abbreviations skein knows (Craft Yarn Council), and those it reads but has no stitch model for yet.
 const char* const kKnown[] = {"k", "p", "k1tbl", "p1tbl", "yo", "k2tog", "ssk", "skp", "p2tog", "ssp", "k3tog", "sssk", "p3tog", "sssp", "sl1", "sl1 wyib", "sl1 wyif",
-                              "psso", "p2sso", "c4f", "c4b", "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
-const char* const kNotModelled[] = {"m1", "m1l", "m1r", "m1p", "m1lp", "m1rp", "mb", "w&t", "kyok", "ktbl2tog", "dpk"};
+                              "psso", "p2sso", "m1", "m1l", "m1p", "m1lp", "c4f", "c4b", "c6f", "c6b", "2/2 lc", "2/2 rc", "1/1 lt", "1/1 rt", "knit", "purl", "k to end", "p to end"};
+const char* const kNotModelled[] = {"m1r", "m1rp", "mb", "w&t", "kyok", "ktbl2tog", "dpk"};
 
 int edit_distance(const std::string& a, const std::string& b) {
   std::vector<int> row(b.size() + 1);
@@ -116,7 +117,7 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
   const auto type_is = [&](size_t i, const char* type) { return i < items.size() && items[i].kind == Item::Stitch && items[i].type == type; };
   // `type` with a yarn-over worked after it (`after`) or before it, as seen from the front: a right-side row is
   // worked right to left, so what is worked later lies on the left; a wrong-side row the other way.
-  const auto beside = [&](const std::string& type, bool after) { return after == right_side ? "y" + type : type + "y"; };
+  const auto beside = [&](const std::string& type, bool after, const std::string& loop = "y") { return after == right_side ? loop + type : type + loop; };
   // A yarn-over and its decrease, in either order: the lace face (a purl from the front: garter lace's ysp, 2up).
   static const std::pair<const char*, const char*> kLaceFaces[] = {{"d21k", "ys"}, {"d12k", "2u"}, {"d21p", "ysp"}, {"d12p", "2up"}};
   const auto lace_face = [&](size_t i) -> const char* {
@@ -124,8 +125,33 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
       if ((is(i, "yo") && type_is(i + 1, decrease)) || (type_is(i, decrease) && is(i + 1, "yo"))) return face;
     return nullptr;
   };
+  // A made loop joins the plain stitch worked before it, or else the one after, as a yarn-over does: "k1, m1l"
+  // on a right-side row is kfb's face xk. The face must exist (a made knit beside a knit, a made purl beside a purl).
+  const auto made_face = [&](const Item& made, const Item& plain_item, bool after) {
+    Item face = plain_item;
+    face.type = beside(plain_item.type, after, made.type);
+    face.written = after ? plain_item.written + ", " + made.written : made.written + ", " + plain_item.written;
+    if (!find_stitch_type(face.type))
+      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(made.column),
+                  "'" + face.written + "' would be the increase face '" + face.type + "', which skein has no stitch model for: a made loop " +
+                      "joins a plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
+    return face;
+  };
   for (size_t i = 0; i < items.size(); ++i) {
     Item item = items[i];
+    if (item.made) {
+      if (!out.empty() && plain(out.back()) && !out.back().made) {
+        out.back() = made_face(item, out.back(), true);
+        continue;
+      }
+      if (i + 1 < items.size() && plain(items[i + 1]) && !items[i + 1].made) {
+        out.push_back(made_face(item, items[i + 1], false));
+        ++i;
+        continue;
+      }
+      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
+                  "'" + item.written + "' makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it has neither");
+    }
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
       item.type = "y3y";
       item.colour = items[i + 1].colour;  // the decrease's colour ("yo, sk2p CC, yo"), as the face's below
@@ -450,6 +476,14 @@ private:
         c.order = right ? 1 : -1;
         c.purl_behind = purl_behind;
         items.push_back(c);
+      } else if (match(R"(m1(lp|l|p)?(?![a-z0-9]))", m)) {
+        // Make one: the bar between two stitches lifted and worked through its back loop, a crossed loop (x as a
+        // knit from the front, q as a purl); m1l's twist is k1tbl's. It joins a plain neighbour (pair_lace).
+        m_pos += static_cast<size_t>(m.length(0));
+        const bool purl = m[1].str().find('p') != std::string::npos;
+        Item made = stitch(at, m.str(0), purl ? "q" : "x", purl ? "x" : "q");
+        made.made = true;
+        items.push_back(made);
       } else if (match(R"((k|p)fb)", m)) {
         // Into the front and then the back leg of one loop: the second loop crossed (Yuksel 2012 Table 1's increase
         // with an x or q loop), seen from the front: a right-side row worked right to left, a wrong-side row left to
@@ -489,7 +523,8 @@ private:
         const std::string word = m_text.substr(m_pos, end - m_pos);
         if (std::find(std::begin(kNotModelled), std::end(kNotModelled), word) != std::end(kNotModelled))
           fail(at, "'" + word + "' is a knitting abbreviation skein has no stitch model for yet" +
-                       std::string(word.rfind("m1", 0) == 0 ? "; the nearest increases are 'kfb' and a yarn-over" : ""));
+                       std::string(word.rfind("m1", 0) == 0 ? "; its loop twists the other way from skein's crossed loops (k1tbl's and m1l's): "
+                                                              "the nearest are 'm1l' and 'kfb'" : ""));
         // "k2 DC" in a pattern in colours: a word after a stitch reads as its colour.
         const bool after_stitch = !m_palette.empty() && !items.empty() && at > 0 && std::isspace(static_cast<unsigned char>(m_text[at - 1])) &&
                                   word.size() <= 3;

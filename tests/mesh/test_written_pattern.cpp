@@ -163,7 +163,9 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
             "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'skp', 'p'? (patterns/FORMAT.md lists what is read)");
-  EXPECT_EQ(error("Row 1: k2, m1l, k2.\n"), "p.txt: line 1, column 12: 'm1l' is a knitting abbreviation skein has no stitch model for yet; the nearest increases are 'kfb' and a yarn-over");
+  EXPECT_EQ(error("Row 1: k2, m1r, k2.\n"),
+            "p.txt: line 1, column 12: 'm1r' is a knitting abbreviation skein has no stitch model for yet; its loop twists the other way from "
+            "skein's crossed loops (k1tbl's and m1l's): the nearest are 'm1l' and 'kfb'");
   EXPECT_EQ(error("Row 1: knit.\nRow 3: purl.\n"), "p.txt: line 2: row 3 comes where row 2 was expected (rows are numbered from 1, in order)");
   EXPECT_EQ(error("Row 1: *k2, p2.\n"), "p.txt: line 1: a '*' without 'rep from *' after it");
   EXPECT_EQ(error("Row 1: [k1, p1].\n"), "p.txt: line 1, column 17: expected how many times the group is worked after it ('3 times' or 'x3')");
@@ -246,6 +248,29 @@ TEST(WrittenPattern, TheCorpusReadsAsTheBundledFabrics) {
     EXPECT_FALSE(p.name.empty());
     EXPECT_FALSE(p.note.empty());
   }
+}
+
+TEST(WrittenPattern, AMadeLoopJoinsItsPlainNeighbourIntoAnIncreaseFace) {
+  // m1 / m1l: the bar between two stitches lifted and knit through its back loop, a crossed knit (x) from the
+  // front; m1p / m1lp a crossed purl (q). It joins the plain stitch worked before it, or else the one after, as
+  // kfb's loops do: a right-side row is worked right to left, a wrong-side row left to right with its knits purls.
+  const auto rows_of = [](const std::string& rs, const std::string& ws = "Purl.") {
+    return rows_text(mesh::parse_pattern("Row 1 (RS): " + rs + "\nRow 2: " + ws + "\n", "a.txt"));
+  };
+  EXPECT_EQ(rows_of("K2tog, k1, m1l."), "xk d12k / k k k / ");   // as "K2tog, kfb."
+  EXPECT_EQ(rows_of("K2tog, M1, k1."), "kx d12k / k k k / ");    // made first: it lies right of the knit
+  EXPECT_EQ(rows_of("P2tog, p1, m1p.", "Knit."), "qp d12p / p p p / ");
+  EXPECT_EQ(rows_of("Knit.", "P2tog, p1, m1lp."), "k k k / d12k kx / ");  // purls from the wrong side: knits from the front
+  EXPECT_EQ(rows_of("Knit.", "P2tog, k1, m1."), "k k k / d12k pq / ");
+  // Counted as the increases they are: "K1, m1l, k to end" on four stitches makes five.
+  EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K1, m1l, k to end. (5 sts)\nRow 2: Purl.\n", "w.txt").rows[1].size(), 5u);
+  // A made loop with no plain neighbour of its kind is refused, naming the face it would be.
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "m.txt"); }); };
+  EXPECT_EQ(error("Row 1 (RS): K2tog, p1, m1l.\nRow 2: Purl.\n"),
+            "m.txt: line 1, column 24: 'p1, m1l' would be the increase face 'xp', which skein has no stitch model for: a made loop joins a "
+            "plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
+  EXPECT_EQ(error("Row 1 (RS): K2tog, m1l, k2tog.\nRow 2: Purl.\n"),
+            "m.txt: line 1, column 20: 'm1l' makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it has neither");
 }
 
 TEST(WrittenPattern, StitchesWorkedIntoOneAreIncreaseFaces) {
