@@ -13,7 +13,11 @@ trap 'rm -rf "$out"' EXIT
 run() {  # name, pattern file, extra options
   local name=$1 file=$2
   shift 2
-  "$build/bin/skein" smock "$file" --cloth "$out/c.obj" --report "$out/r.json" "$@" > "$out/log" 2>&1
+  if ! "$build/bin/skein" smock "$file" --cloth "$out/c.obj" --report "$out/r.json" "$@" > "$out/log" 2>&1; then
+    echo "$name failed:" >&2
+    cat "$out/log" >&2
+    exit 1
+  fi
   python3 - "$name" "$out/r.json" <<'PY'
 import json, sys
 c = json.load(open(sys.argv[2]))["cloth"]

@@ -190,6 +190,7 @@ json smock(SmockArgs args) {
                        {"frames", cloth->frames},
                        {"newton_iterations", cloth->newton_iterations},
                        {"collision_limited_steps", cloth->ccd_limited_steps},
+                       {"shifted_steps", cloth->shifted_steps},
                        {"seconds", cloth_seconds},
                        {"energy", cloth->energy},
                        {"barrier_reach_mm", cloth->reach},

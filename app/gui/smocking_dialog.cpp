@@ -9,7 +9,6 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPushButton>
-#include <QSpinBox>
 
 #include <chrono>
 
@@ -22,9 +21,9 @@ namespace skein::gui {
 
 SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
   setWindowTitle(tr("Smocking preview"));
-  auto* open = new QPushButton(tr("&Open pattern..."), this);
-  open->setObjectName("openPattern");
-  connect(open, &QPushButton::clicked, this, [this] {
+  m_open = new QPushButton(tr("&Open pattern..."), this);
+  m_open->setObjectName("openPattern");
+  connect(m_open, &QPushButton::clicked, this, [this] {
     const auto path = QFileDialog::getOpenFileName(this, tr("Open smocking pattern"), {},
                                                    tr("Smocking patterns and drawings (*.smock *.svg);;All files (*)"));
     if (!path.isEmpty()) open_pattern(path);
@@ -42,17 +41,16 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
   m_gather = new QPushButton(tr("&Gather"), this);
   m_gather->setObjectName("gather");
   connect(m_gather, &QPushButton::clicked, this, [this] { gather(); });
-  m_subdivisions = new QSpinBox(this);
+  m_subdivisions = new QComboBox(this);
   m_subdivisions->setObjectName("subdivisions");
-  m_subdivisions->setRange(2, 4);  // 4: about 20 s on two cores; finer from the command line (--subdivisions)
-  m_subdivisions->setSingleStep(2);
+  m_subdivisions->addItems({"2", "4"});  // 4: the zigzag in 20 s on two cores; finer from the command line (--subdivisions)
   m_subdivisions->setToolTip(tr("Fine squares per side of a pattern square in the 3-D fabric"));
   m_cloth = new QPushButton(tr("Smock in &3-D"), this);
   m_cloth->setObjectName("cloth");
   m_cloth->setToolTip(tr("Drape a fine fabric to the gathered pattern, never through itself (Zhou 2024 §4.2)"));
   connect(m_cloth, &QPushButton::clicked, this, [this] { smock_in_3d(); });
   auto* controls = new QHBoxLayout;
-  controls->addWidget(open);
+  controls->addWidget(m_open);
   auto* form = new QFormLayout;
   form->addRow(tr("Gamma"), m_gamma);
   form->addRow(tr("Pull"), m_pull);
@@ -67,7 +65,12 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
 }
 
 SmockingDialog::~SmockingDialog() {
+  m_stop = true;  // the worker stops at its next Newton step
   if (m_worker.joinable()) m_worker.join();
+}
+
+void SmockingDialog::set_busy(bool busy) {
+  for (QWidget* w : std::initializer_list<QWidget*>{m_open, m_gamma, m_pull, m_subdivisions, m_gather, m_cloth}) w->setEnabled(!busy);
 }
 
 bool SmockingDialog::open_pattern(const QString& path) {
@@ -119,18 +122,17 @@ void SmockingDialog::smock_in_3d() {
   gather();
   if (!m_embedding) return;
   if (m_worker.joinable()) m_worker.join();
-  m_gather->setEnabled(false);
-  m_cloth->setEnabled(false);
+  set_busy(true);
   m_done = false;
   m_summary->setText(tr("Smocking in 3-D..."));
   smocking::ClothOptions options;
-  options.subdivisions = m_subdivisions->value();
+  options.subdivisions = m_subdivisions->currentText().toInt();
   m_worker = std::thread([this, pattern = *m_pattern, embedding = *m_embedding, options] {
     QImage picture;
     QString summary;
     try {
       const auto start = std::chrono::steady_clock::now();
-      const auto cloth = smocking::smock_cloth(pattern, embedding, smocking::lift(embedding), options);
+      const auto cloth = smocking::smock_cloth(pattern, embedding, smocking::lift(embedding), options, &m_stop);
       const long crossings = smocking::exact_intersections(cloth);
       const auto image = render::draw_smocked_fabric(cloth, 500);  // the flat and gathered panels' size
       picture = QImage(image.rgb.data(), image.width, image.height, image.width * 3, QImage::Format_RGB888).copy();
@@ -156,8 +158,7 @@ void SmockingDialog::finish(const QImage& image, const QString& summary) {
     m_has_fabric = true;
   }
   m_summary->setText(summary);
-  m_gather->setEnabled(true);
-  m_cloth->setEnabled(true);
+  set_busy(false);
   m_done = true;
 }
 

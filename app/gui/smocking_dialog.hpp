@@ -15,11 +15,11 @@ class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
-class QSpinBox;
 
 namespace skein::gui {
 
-/// Its fields carry object names (gamma, pull, gather, subdivisions, cloth, picture, summary) for tests.
+/// Its fields carry object names (openPattern, gamma, pull, gather, subdivisions, cloth, picture, summary) for tests.
+/// Closing it while the 3-D fabric is being made stops that at its next Newton step.
 class SmockingDialog final : public QDialog {
   Q_OBJECT
 public:
@@ -39,12 +39,13 @@ public:
 
 private:
   void show_picture();
+  void set_busy(bool busy);
   void finish(const QImage& image, const QString& summary);
   std::thread m_worker;
-  std::atomic<bool> m_done{true};
+  std::atomic<bool> m_done{true}, m_stop{false};
   bool m_has_fabric = false;
-  QSpinBox* m_subdivisions = nullptr;
-  QPushButton *m_gather = nullptr, *m_cloth = nullptr;
+  QComboBox* m_subdivisions = nullptr;
+  QPushButton *m_open = nullptr, *m_gather = nullptr, *m_cloth = nullptr;
   std::optional<smocking::SmockingPattern> m_pattern;
   std::optional<smocking::Embedding> m_embedding;
   QDoubleSpinBox* m_gamma = nullptr;

@@ -10,6 +10,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <Eigen/Geometry>
+#include <dlfcn.h>
 #include <omp.h>
 
 #include <Eigen/CholmodSupport>
@@ -297,6 +298,8 @@ double collision_bound(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::
 class NewtonSystem {
 public:
   NewtonSystem(const Potential& potential, const Eigen::Matrix3Xd& x) : m_size(3 * x.cols()) {
+    // OpenBLAS's threaded builds spin in sched_yield between calls: where one is the system's BLAS, one thread.
+    if (auto* set_threads = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set_threads(1);
     Triplets constant, varying;
     potential.constant_hessian(constant);
     Eigen::Matrix3Xd grad;
@@ -310,8 +313,9 @@ public:
     m_solver.cholmod().print = 0;                             // a breakdown is handled below, not printed
   }
 
-  /// The Newton step for the gradient `grad` and the varying part of the Hessian; false when H cannot be factored.
-  bool solve(Triplets& varying, const Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& step) {
+  /// The Newton step for the gradient `grad` and the varying part of the Hessian, and the diagonal shift it took
+  /// (0 but where the factorization broke down); false when H cannot be factored.
+  bool solve(Triplets& varying, const Eigen::Matrix3Xd& grad, Eigen::Matrix3Xd& step, double& shift) {
     Eigen::SparseMatrix<double> h = m_constant + assemble(varying);
     const bool same_pattern = h.nonZeros() == m_analysed.nonZeros() &&
                               std::equal(h.outerIndexPtr(), h.outerIndexPtr() + h.cols() + 1, m_analysed.outerIndexPtr()) &&
@@ -324,7 +328,7 @@ public:
     // diagonal), but a pair pressed to micrometres gives the barrier a curvature 10^15 times the fabric's, and the
     // factorization can break down in rounding. Then the diagonal is raised a little (Levenberg), as often as
     // needed, so the step shortens toward the gradient's instead of stopping the run.
-    double shift = 0;
+    shift = 0;
     for (int attempt = 0;; ++attempt) {
       const int levels = omp_get_max_active_levels();
       omp_set_max_active_levels(0);  // CHOLMOD's small OpenMP regions cost more in wake-ups than they save
@@ -480,6 +484,7 @@ void ClothOptions::validate() const {
     if (!(value > 0) || !std::isfinite(value)) throw Error("", name, "must be a positive number");
   if (frames < 1 || newton_per_frame < 1) throw Error("", "frames", "frames and Newton steps per frame must be at least 1");
   if (!(tolerance > 0)) throw Error("", "tolerance", "must be positive");
+  if (!(k_barrier_max >= 1) || !std::isfinite(k_barrier_max)) throw Error("", "k_barrier_max", "must be a number of at least 1");
 }
 
 double barrier_reach(const SmockingPattern& pattern, const Embedding& embedding, const ClothOptions& options) {
@@ -498,7 +503,8 @@ double first_frame_potential(const SmockingPattern& pattern, const Embedding& em
   return potential.energy(x, near_pairs(f, x, reach), grad, nullptr);
 }
 
-Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options) {
+Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options,
+                  const std::atomic<bool>* stop) {
   options.validate();
   Cloth cloth;
   const Fabric f = build_fabric(pattern, embedding, lift, options.subdivisions, cloth.grid_vertex, cloth.rest);
@@ -510,21 +516,25 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
   const double max_move = 4 * h, settled = options.tolerance * h;
   NewtonSystem system(potential, x);
   std::vector<Pair> pairs = near_pairs(f, x, cloth.reach);  // the barrier's pairs at x, kept with it
-  constexpr double kDeep = 0.1, kStiffest = 1e4;             // κ doubles below kDeep d̂, up to kStiffest times its start
+  constexpr double kDeep = 0.1;                              // κ doubles when a pair closes in below kDeep d̂
   double last_closest = cloth.reach;
   for (int frame = 0; frame < options.frames; ++frame) {
     potential.anchor = x;
     ++cloth.frames;
+    bool shifted = false;  // a shifted step is short because of the shift: it says nothing of having settled
     for (int it = 0; it < options.newton_per_frame; ++it) {
+      if (stop && *stop) throw Error(pattern.name, "frame " + std::to_string(frame), "stopped before the fabric was finished");
       Eigen::Matrix3Xd grad;
       Triplets hess;
       const double e0 = potential.energy(x, pairs, &grad, &hess);
       if (!std::isfinite(e0)) throw Error(pattern.name, "frame " + std::to_string(frame), "the fabric's energy is not finite (a bug: please report it)");
       Eigen::Matrix3Xd dir;
-      if (!system.solve(hess, grad, dir)) throw Error(pattern.name, "frame " + std::to_string(frame), "the Newton system could not be factored");
+      double shift = 0;
+      if (!system.solve(hess, grad, dir, shift)) throw Error(pattern.name, "frame " + std::to_string(frame), "the Newton system could not be factored");
+      if (shift > 0) ++cloth.shifted_steps, shifted = true;
       const double largest = dir.colwise().norm().maxCoeff();
       ++cloth.newton_iterations;
-      if (largest < settled) break;
+      if (largest < settled && shift == 0) break;
       if (largest > max_move) dir *= max_move / largest;
       // One broad phase a step: the pairs that may come within reach on its path, for the collision bound and for
       // the barrier at every point of the line search.
@@ -549,11 +559,12 @@ Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, co
       // cut short by the collision bound.
       double closest = cloth.reach;
       for (const auto& p : pairs) closest = std::min(closest, difference(p, x).norm());
-      if (closest < kDeep * cloth.reach && closest < last_closest && potential.barrier.k < kStiffest * options.k_barrier) potential.barrier.k *= 2;
+      if (closest < kDeep * cloth.reach && closest < last_closest)
+        potential.barrier.k = std::min(2 * potential.barrier.k, options.k_barrier_max * options.k_barrier);
       last_closest = closest;
     }
     const double moved = (x - potential.anchor).colwise().norm().maxCoeff();
-    if (moved < settled) break;
+    if (moved < settled && !shifted) break;
   }
   cloth.positions = x;
   cloth.barrier_stiffness = potential.barrier.k;

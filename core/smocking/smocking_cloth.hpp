@@ -5,6 +5,7 @@
 // is capped by a conservative continuous-collision bound, so no step lets the fabric pass through itself. The
 // result is certified at the end by an exact triangle-triangle test (CGAL's exact predicates).
 #include <array>
+#include <atomic>
 #include <vector>
 
 #include <Eigen/Core>
@@ -24,6 +25,7 @@ struct ClothOptions {
   double inertia = 1;          ///< proximal weight of each frame (the incremental potential's mass / Δt²), per mm² of fabric
   double reach = -1;           ///< the barrier's reach d̂ [mm]; below 0: the embedding's fabric thickness τ
   double k_barrier = 1;        ///< the barrier's stiffness κ at the start (IPC's adaptive κ doubles it as pairs press in)
+  double k_barrier_max = 1e4;  ///< κ doubles up to this times k_barrier (1: κ held at k_barrier)
   int frames = 100;            ///< as the paper's 100 frames at most
   int newton_per_frame = 20;
   double tolerance = 1e-2;     ///< a frame has settled when a Newton step moves no point more than this × the fine spacing
@@ -40,15 +42,18 @@ struct Cloth {
   int frames = 0, newton_iterations = 0;
   double reach = 0;                        ///< d̂ used
   double barrier_stiffness = 0;            ///< κ at the end (it doubles while a pair keeps closing in deep in the reach)
-  double energy = 0;
+  double energy = 0;                       ///< the last frame's incremental potential at the end, with the final κ
   double smallest_distance = 0;            ///< between non-adjacent triangles' closest elements at the end [mm]
   double largest_stretch = 0;              ///< max over fabric edges of length / rest - 1
   double target_error = 0;                 ///< RMS distance of the guided points from their lifted places [mm]
   long ccd_limited_steps = 0;              ///< line searches the collision bound cut short
+  long shifted_steps = 0;                  ///< Newton steps whose factorization broke down and took a diagonal shift
 };
 
-/// Drapes the fine fabric from flat to the lifted embedding of `pattern` (embed() then lift()).
-Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options);
+/// Drapes the fine fabric from flat to the lifted embedding of `pattern` (embed() then lift()). When `stop` is
+/// given and becomes true, throws skein::Error ("stopped") at the next Newton step.
+Cloth smock_cloth(const SmockingPattern& pattern, const Embedding& embedding, const Lift& lift, const ClothOptions& options,
+                  const std::atomic<bool>* stop = nullptr);
 
 /// The barrier's reach d̂ that smock_cloth uses [mm].
 double barrier_reach(const SmockingPattern& pattern, const Embedding& embedding, const ClothOptions& options);

@@ -8,6 +8,7 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QElapsedTimer>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QPushButton>
@@ -201,6 +202,14 @@ private slots:
     QVERIFY(dialog->embedding()->shrinkage() <= 0.5 * 1.01);
     QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // the flat pattern and the gathered fabric
     QVERIFY2(summary->text().startsWith("reached"), qPrintable(summary->text()));
+    // A drawing: four stitches of a zigzag, every second one dashed (a back stitch).
+    const QString drawing = write_file(dir, "d.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<line x1=\"0\" y1=\"10\" x2=\"10\" y2=\"0\"/>\n"
+                                                    "<line x1=\"10\" y1=\"0\" x2=\"20\" y2=\"10\" stroke-dasharray=\"2\"/>\n"
+                                                    "<line x1=\"20\" y1=\"10\" x2=\"30\" y2=\"0\"/>\n</svg>\n");
+    QVERIFY(dialog->open_pattern(drawing));
+    QVERIFY2(summary->text().contains("italian smocking, 6 x 4 grid points, 1 threads, 3 stitches"), qPrintable(summary->text()));
+    QVERIFY(dialog->open_pattern(kPatterns + "/smocking/zigzag.smock"));
+    dialog->findChild<QDoubleSpinBox*>("gamma")->setValue(0.5);
     // The fabric in 3-D, on a worker thread: front and side, never through itself.
     QTest::mouseClick(dialog->findChild<QPushButton*>("cloth"), Qt::LeftButton);
     QVERIFY(dialog->busy());
@@ -210,12 +219,16 @@ private slots:
     QVERIFY2(summary->text().contains("861 points") && summary->text().contains(", 0 intersecting triangle pairs"), qPrintable(summary->text()));
     QCOMPARE(dialog->findChild<QLabel*>("picture")->pixmap().width(), 2 * flat_width);  // front and side, as large
     QVERIFY(dialog->findChild<QPushButton*>("gather")->isEnabled());
-    // A drawing: four stitches of a zigzag, every second one dashed (a back stitch).
-    const QString drawing = write_file(dir, "d.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<line x1=\"0\" y1=\"10\" x2=\"10\" y2=\"0\"/>\n"
-                                                    "<line x1=\"10\" y1=\"0\" x2=\"20\" y2=\"10\" stroke-dasharray=\"2\"/>\n"
-                                                    "<line x1=\"20\" y1=\"10\" x2=\"30\" y2=\"0\"/>\n</svg>\n");
-    QVERIFY(dialog->open_pattern(drawing));
-    QVERIFY2(summary->text().contains("italian smocking, 6 x 4 grid points, 1 threads, 3 stitches"), qPrintable(summary->text()));
+    // Closed while a finer fabric is being made (about 20 s), the window goes at once: the run stops at its next
+    // Newton step.
+    dialog->findChild<QComboBox*>("subdivisions")->setCurrentText("4");
+    QTest::mouseClick(dialog->findChild<QPushButton*>("cloth"), Qt::LeftButton);
+    QVERIFY(dialog->busy());
+    QVERIFY(!dialog->findChild<QPushButton*>("openPattern")->isEnabled());
+    QElapsedTimer closing;
+    closing.start();
+    delete dialog;
+    QVERIFY2(closing.elapsed() < 3000, qPrintable(QString::number(closing.elapsed())));
   }
 
   void a_woven_design_is_synthesized_and_rendered() {

@@ -147,9 +147,8 @@ TEST(SmockingCloth, TheAdditiveCcdStopsEveryHeadOnPassageInTimeAndLetsSlidingPas
 
 TEST(SmockingCloth, TheBarrierStiffensWhenGuidedPointsPressTheFabricTogether) {
   // Two zigzag threads pulled hard (γ 0.3), their points held ten times more strongly than the default: the
-  // guidance presses folds together. With κ held at 1 this run jams after 6 frames, every step cut short by the
-  // collision bound, a pair 0.5 µm apart and the points 4.3 mm (RMS) from their places; the adaptive κ (IPC)
-  // pushes back and the fabric reaches its places.
+  // guidance presses folds together. With κ held at its start the run jams, every step cut short by the collision
+  // bound and a pair pressed to a micrometre; the adaptive κ (IPC) pushes back and the fabric reaches its places.
   const auto p = pattern_of("grid 9 5\nspacing 10\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\n");
   EmbedOptions eo;
   eo.gamma = 0.3;
@@ -157,10 +156,26 @@ TEST(SmockingCloth, TheBarrierStiffensWhenGuidedPointsPressTheFabricTogether) {
   const auto l = lift(e);
   ClothOptions o;
   o.w_pos = 100;
+  o.k_barrier_max = 1;
+  const Cloth held = smock_cloth(p, e, l, o);
+  EXPECT_EQ(held.barrier_stiffness, 1);
+  EXPECT_LT(held.smallest_distance, 1e-3 * held.reach);
+  EXPECT_GT(held.ccd_limited_steps, held.newton_iterations / 2);
+  EXPECT_GT(held.target_error, 3.0);
+  o.k_barrier_max = ClothOptions{}.k_barrier_max;
   const Cloth c = smock_cloth(p, e, l, o);
   EXPECT_GT(c.barrier_stiffness, 1);
+  EXPECT_LE(c.barrier_stiffness, o.k_barrier_max);
   EXPECT_GT(c.smallest_distance, 0.1 * c.reach);
   EXPECT_LT(c.target_error, 1.0);
   EXPECT_LT(c.ccd_limited_steps, c.newton_iterations / 4);
+  EXPECT_EQ(exact_intersections(held), 0);
   EXPECT_EQ(exact_intersections(c), 0);
+}
+
+TEST(SmockingCloth, StopsWhenAskedAtItsNextNewtonStep) {
+  const auto p = pattern_of("grid 5 3\nspacing 10\nwalk front 0,1 1,-1 1,1 x4\n");
+  const auto e = embed(p, {});
+  const std::atomic<bool> stop{true};
+  EXPECT_EQ(error_of([&] { smock_cloth(p, e, lift(e), {}, &stop); }), "frame 0: stopped before the fabric was finished");
 }
