@@ -117,7 +117,7 @@ Job parse_job(const std::string& text, const fs::path& file) {
     // A smocking job (docs/smocking.md): the pattern, how far its threads are pulled, the output folder.
     k.only({"name", "smocking", "output", "pictures"});
     const Keys sm(k.at("smocking"), "smocking", file);
-    sm.only({"pattern", "gamma", "pull", "thickness", "snapshots", "max_iterations", "cloth", "cloth_subdivisions"});
+    sm.only({"pattern", "gamma", "pull", "thickness", "snapshots", "max_iterations", "cloth", "cloth_subdivisions", "cloth_frames"});
     SmockingJob s;
     if (!sm.has("pattern")) sm.fail(sm.name("pattern"), "is missing: the smocking pattern (.smock)");
     s.pattern = sm.file("pattern");
@@ -148,6 +148,10 @@ Job parse_job(const std::string& text, const fs::path& file) {
       } catch (const Error& e) {
         sm.fail(sm.name("cloth_subdivisions"), e.rule());
       }
+    }
+    if (sm.has("cloth_frames")) {
+      if (!s.cloth) sm.fail(sm.name("cloth_frames"), "needs \"cloth\": true");
+      s.args.cloth_options.frames = static_cast<int>(sm.integer("cloth_frames", s.args.cloth_options.frames, 1, 100'000));
     }
     job.smocking = std::move(s);
     job.output = (file.parent_path() / k.text("output", "out/" + job.name)).lexically_normal();

@@ -34,6 +34,8 @@ struct SmockCommand final : Subcommand {
                       "never passing through itself, certified by an exact triangle test");
     smock->add_option("--cloth-png", sm.cloth_png, "picture of the 3-D fabric, from the front and from the side");
     smock->add_option("--subdivisions", sm.cloth_options.subdivisions, "with --cloth or --cloth-png: fine squares per side of a pattern square (even)")->capture_default_str();
+    smock->add_option("--frames", sm.cloth_options.frames, "with --cloth or --cloth-png: frames at most (the paper's 100; a run ends sooner when a frame no longer moves)")
+        ->capture_default_str()->transform(whole_in_range(1, 100000));
     smock->add_option("--gamma", sm.gamma, "pull the threads to this fraction of their sewn length (default: the pattern's gamma line)")->check(in_range(1e-6, 1.0));
     smock->add_option("--thickness", sm.options.thickness, "fabric thickness [mm] (default: 1 % of the grid's longer side, the paper's setting)")
         ->check(in_range(1e-6, 1e4));

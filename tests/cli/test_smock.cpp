@@ -108,6 +108,12 @@ TEST(Cli, ASmockingJobGathersItsPatternIntoTheOutputFolder) {
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "cloth" / "report.json"))["smocking"]["cloth"]["intersections"], 0);
   const auto odd = dir.write("o.json", "{\"smocking\": {\"pattern\": \"z.smock\", \"cloth\": true, \"cloth_subdivisions\": 3}}");
   EXPECT_NE(run_skein("run " + odd.string()).output.find("key 'smocking.cloth_subdivisions': must be even"), std::string::npos);
+  // cloth_frames caps the frames, as --frames does; it needs the cloth.
+  const auto few = dir.write("f.json", "{\"smocking\": {\"pattern\": \"z.smock\", \"cloth\": true, \"cloth_frames\": 3}, \"output\": \"few\"}");
+  ASSERT_EQ(run_skein("run " + few.string()).status, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "few" / "report.json"))["smocking"]["cloth"]["frames"], 3);
+  const auto flat = dir.write("n.json", "{\"smocking\": {\"pattern\": \"z.smock\", \"cloth_frames\": 3}}");
+  EXPECT_NE(run_skein("run " + flat.string()).output.find("key 'smocking.cloth_frames': needs \"cloth\": true"), std::string::npos);
 }
 
 TEST(Cli, SmockReadsADrawingAndWritesWhatItReadAsText) {
