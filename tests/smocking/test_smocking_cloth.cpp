@@ -16,6 +16,23 @@ using skein::testing::error_of;
 namespace {
 SmockingPattern pattern_of(const std::string& text) { return parse_smocking_pattern("format smocking\n" + text, "test.smock"); }
 
+/// A pattern gathered to `gamma` and lifted: what smock_cloth takes.
+struct Gathered {
+  SmockingPattern pattern;
+  Embedding embedding;
+  Lift lifted;
+};
+Gathered gathered(const std::string& text, double gamma) {
+  Gathered g{pattern_of(text), {}, {}};
+  EmbedOptions eo;
+  eo.gamma = gamma;
+  g.embedding = embed(g.pattern, eo);
+  g.lifted = lift(g.embedding);
+  return g;
+}
+
+const char* const kTwoZigzags = "grid 9 5\nspacing 10\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\n";
+
 /// Two flat triangles, the second lifted by `lift` mm and pushed through the first when `through`.
 Cloth two_triangles(double lift, bool through) {
   Cloth c;
@@ -41,12 +58,8 @@ TEST(SmockingCloth, TheExactTestFindsACrossingAndNoneAtAMicrometre) {
 
 TEST(SmockingCloth, AZigzagGathersIntoPleatsWithoutPassingThroughItself) {
   // Two zigzag threads on a 9 x 5 grid, pulled to 0.4 of their length.
-  const auto p = pattern_of("grid 9 5\nspacing 10\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\n");
-  EmbedOptions eo;
-  eo.gamma = 0.4;
-  const auto e = embed(p, eo);
+  const auto [p, e, l] = gathered(kTwoZigzags, 0.4);
   ASSERT_EQ(e.stopped, EmbedStop::Reached);
-  const auto l = lift(e);
   ClothOptions o;
   const Cloth c = smock_cloth(p, e, l, o);
   EXPECT_EQ(c.positions.cols(), (8 * 2 + 1) * (4 * 2 + 1));
@@ -68,11 +81,7 @@ TEST(SmockingCloth, TheEnergiesGradientMatchesFiniteDifferences) {
   // Every term at once: the fabric crumpled at random and squeezed to 0.3 of its width, so that springs
   // stretch and shorten, bending is far from flat, the guided points are off their places and hundreds of
   // point-triangle and edge-edge pairs lie within the barrier's reach.
-  const auto p = pattern_of("grid 5 3\nspacing 10\nwalk front 0,1 1,-1 1,1 x4\n");
-  EmbedOptions eo;
-  eo.gamma = 0.5;
-  const auto e = embed(p, eo);
-  const auto l = lift(e);
+  const auto [p, e, l] = gathered("grid 5 3\nspacing 10\nwalk front 0,1 1,-1 1,1 x4\n", 0.5);
   ClothOptions o;
   o.reach = 2;
   const int points = (4 * 2 + 1) * (2 * 2 + 1);
@@ -149,11 +158,7 @@ TEST(SmockingCloth, TheBarrierStiffensWhenGuidedPointsPressTheFabricTogether) {
   // Two zigzag threads pulled hard (γ 0.3), their points held ten times more strongly than the default: the
   // guidance presses folds together. With κ held at its start the run jams, every step cut short by the collision
   // bound and a pair pressed to a micrometre; the adaptive κ (IPC) pushes back and the fabric reaches its places.
-  const auto p = pattern_of("grid 9 5\nspacing 10\nwalk front 0,1 1,-1 1,1 x8\nwalk front 0,3 1,-1 1,1 x8\n");
-  EmbedOptions eo;
-  eo.gamma = 0.3;
-  const auto e = embed(p, eo);
-  const auto l = lift(e);
+  const auto [p, e, l] = gathered(kTwoZigzags, 0.3);
   ClothOptions o;
   o.w_pos = 100;
   o.k_barrier_max = 1;
