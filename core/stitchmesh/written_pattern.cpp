@@ -126,31 +126,52 @@ void pair_lace(std::vector<Item>& items, const std::string& source, int line, bo
     return nullptr;
   };
   // A made loop joins the plain stitch worked before it, or else the one after, as a yarn-over does: "k1, m1l"
-  // on a right-side row is kfb's face xk. The face must exist (a made knit beside a knit, a made purl beside a purl).
+  // on a right-side row is kfb's face xk. The face must exist (a made knit beside a knit, a made purl beside a
+  // purl: "k2, m1p, p2" joins the purl after) and takes one colour.
   const auto made_face = [&](const Item& made, const Item& plain_item, bool after) {
     Item face = plain_item;
     face.type = beside(plain_item.type, after, made.type);
     face.written = after ? plain_item.written + ", " + made.written : made.written + ", " + plain_item.written;
-    if (!find_stitch_type(face.type))
-      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(made.column),
-                  "'" + face.written + "' would be the increase face '" + face.type + "', which skein has no stitch model for: a made loop " +
-                      "joins a plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
     return face;
+  };
+  const auto fail_made = [&](const Item& made, const std::string& rule) {
+    throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(made.column), "'" + made.written + "' " + rule);
   };
   for (size_t i = 0; i < items.size(); ++i) {
     Item item = items[i];
     if (item.made) {
+      std::vector<std::string> tried;  // the faces it would make, for the error
+      const auto fits = [&](const Item& face) {
+        tried.push_back("'" + face.type + "'");
+        return find_stitch_type(face.type) != nullptr;
+      };
+      const auto same_colour = [&](const Item& neighbour) {
+        if (item.colour != neighbour.colour)
+          fail_made(item, "is in another colour than the stitch it joins ('" + neighbour.written +
+                              "'): the increase face they make takes one colour; give them the same");
+      };
       if (!out.empty() && plain(out.back()) && !out.back().made) {
-        out.back() = made_face(item, out.back(), true);
-        continue;
+        const Item face = made_face(item, out.back(), true);
+        if (fits(face)) {
+          same_colour(out.back());
+          out.back() = face;
+          continue;
+        }
       }
       if (i + 1 < items.size() && plain(items[i + 1]) && !items[i + 1].made) {
-        out.push_back(made_face(item, items[i + 1], false));
-        ++i;
-        continue;
+        const Item face = made_face(item, items[i + 1], false);
+        if (fits(face)) {
+          same_colour(items[i + 1]);
+          out.push_back(face);
+          ++i;
+          continue;
+        }
       }
-      throw Error(source, "line " + std::to_string(line) + ", column " + std::to_string(item.column),
-                  "'" + item.written + "' makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it has neither");
+      if (!tried.empty())
+        fail_made(item, "would make the increase face " + tried.front() + (tried.size() > 1 ? " or " + tried.back() : "") + " with its neighbours, which skein has no stitch model for: a made "
+                        "loop joins a plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
+      fail_made(item, "makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it has neither "
+                      "(beside 'k to end', write one stitch out: 'm1, k1, k to end')");
     }
     if (is(i, "yo") && i + 2 < items.size() && items[i + 1].type == kCentred && is(i + 2, "yo")) {
       item.type = "y3y";
@@ -476,11 +497,12 @@ private:
         c.order = right ? 1 : -1;
         c.purl_behind = purl_behind;
         items.push_back(c);
-      } else if (match(R"(m1(lp|l|p)?(?![a-z0-9]))", m)) {
+      } else if (match(R"((?:m1|make\s+(?:1|one))(lp|l|p)?(\s+(?:purlwise|pwise|knitwise|kwise))?(?![a-z0-9]))", m)) {
         // Make one: the bar between two stitches lifted and worked through its back loop, a crossed loop (x as a
         // knit from the front, q as a purl); m1l's twist is k1tbl's. It joins a plain neighbour (pair_lace).
+        // "M1 purlwise" is m1p; "make 1" and "make one" are m1.
         m_pos += static_cast<size_t>(m.length(0));
-        const bool purl = m[1].str().find('p') != std::string::npos;
+        const bool purl = m[1].str().find('p') != std::string::npos || m[2].str().find('p') != std::string::npos;
         Item made = stitch(at, m.str(0), purl ? "q" : "x", purl ? "x" : "q");
         made.made = true;
         items.push_back(made);

@@ -264,13 +264,23 @@ TEST(WrittenPattern, AMadeLoopJoinsItsPlainNeighbourIntoAnIncreaseFace) {
   EXPECT_EQ(rows_of("Knit.", "P2tog, k1, m1."), "k k k / d12k pq / ");
   // Counted as the increases they are: "K1, m1l, k to end" on four stitches makes five.
   EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K1, m1l, k to end. (5 sts)\nRow 2: Purl.\n", "w.txt").rows[1].size(), 5u);
-  // A made loop with no plain neighbour of its kind is refused, naming the face it would be.
+  // Beside a stitch of the other kind it joins the one after: "K2, M1P, p2" widens a rib's purl column.
+  EXPECT_EQ(rows_of("K2tog, k1, m1p, p1.", "Knit."), "pq k d12k / p p p p / ");
+  // Wordings books use: spelled out, and purlwise or knitwise.
+  EXPECT_EQ(rows_of("K2tog, k1, make 1."), "xk d12k / k k k / ");
+  EXPECT_EQ(rows_of("P2tog, p1, M1 purlwise.", "Knit."), "qp d12p / p p p / ");
+  // A made loop with no plain neighbour of its kind is refused, naming the faces it would make.
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "m.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): K2tog, p1, m1l.\nRow 2: Purl.\n"),
-            "m.txt: line 1, column 24: 'p1, m1l' would be the increase face 'xp', which skein has no stitch model for: a made loop joins a "
-            "plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
+            "m.txt: line 1, column 24: 'm1l' would make the increase face 'xp' with its neighbours, which skein has no stitch model for: a made "
+            "loop joins a plain stitch of its own kind, a knit beside a knit ('k1, m1l'), a purl beside a purl ('m1p, p1')");
   EXPECT_EQ(error("Row 1 (RS): K2tog, m1l, k2tog.\nRow 2: Purl.\n"),
-            "m.txt: line 1, column 20: 'm1l' makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it has neither");
+            "m.txt: line 1, column 20: 'm1l' makes a loop that skein models beside a plain knit or purl stitch ('k1, m1l', 'm1p, p1'); here it "
+            "has neither (beside 'k to end', write one stitch out: 'm1, k1, k to end')");
+  // Its face takes one colour: a make-one in a colour of its own is refused, not drawn in its neighbour's.
+  EXPECT_EQ(error("MC: cream\nCC: navy\nCast on 4 sts.\nRow 1 (RS): K2, m1 CC, k2. (5 sts)\nRow 2: Purl.\n"),
+            "m.txt: line 4, column 17: 'm1' is in another colour than the stitch it joins ('k2'): the increase face they make takes one colour; "
+            "give them the same");
 }
 
 TEST(WrittenPattern, StitchesWorkedIntoOneAreIncreaseFaces) {
