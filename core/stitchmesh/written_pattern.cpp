@@ -655,19 +655,33 @@ WrittenRow split_row(std::vector<Item> written, bool right_side, int line, const
 
 struct RowHeader {
   int first = 0, last = 0;
+  std::vector<int> also;  ///< "Rows 1, 3 and 5 (RS):": the later rows of a list with gaps (first = last = 1 here)
   bool round = false;
   int side = 0;       ///< +1 RS, -1 WS, 0 not said
   size_t colon = 0;   ///< where the instructions start
 };
 
 bool row_header(const std::string& line, RowHeader& h) {
-  static const std::regex re(R"(^\s*(rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:and|-|–|to|&)\s*(\d+))?\s*(?:\(\s*(rs|ws|right\s+side|wrong\s+side)\s*\))?\s*[:.])", std::regex::icase);
+  static const std::regex re(
+      R"(^\s*(rows?|rnds?|rounds?)\s+(\d+)(?:\s*(?:-|–|to)\s*(\d+)|((?:\s*(?:,|and|&|,\s*and)\s*\d+)+))?\s*(?:\(\s*(rs|ws|right\s+side|wrong\s+side)\s*\))?\s*[:.])",
+      std::regex::icase);
   std::smatch m;
   if (!std::regex_search(line, m, re)) return false;
   h.round = lower(m[1].str())[1] == 'n' || lower(m[1].str()).rfind("round", 0) == 0;
   h.first = count_of(m[2].str());
   h.last = m[3].matched ? count_of(m[3].str()) : h.first;
-  h.side = m[4].matched ? (lower(m[4].str())[0] == 'r' ? 1 : -1) : 0;
+  h.also.clear();
+  if (m[4].matched) {  // "Rows 1 and 2" is a run of rows; "Rows 1, 3 and 5" rows apart, worked when their turn comes
+    static const std::regex number(R"(\d+)");
+    std::vector<int> listed{h.first};
+    const std::string list = m[4].str();
+    for (auto it = std::sregex_iterator(list.begin(), list.end(), number); it != std::sregex_iterator(); ++it) listed.push_back(count_of(it->str()));
+    bool run = true;
+    for (size_t k = 1; k < listed.size(); ++k) run = run && listed[k] == listed[k - 1] + 1;
+    if (run) h.last = listed.back();
+    else h.also.assign(listed.begin() + 1, listed.end());
+  }
+  h.side = m[5].matched ? (lower(m[5].str())[0] == 'r' ? 1 : -1) : 0;
   h.colon = static_cast<size_t>(m.length(0));
   return true;
 }
@@ -878,8 +892,21 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   };
   // "Row 2 and all WS rows: Purl.": the instructions of every wrong-side row the text leaves out.
   std::optional<Instructions> every_ws;
-  const auto implied_ws = [&](int up_to) {  // the left-out wrong-side rows before row `up_to`
-    while (every_ws && static_cast<int>(rows.size()) + 1 < up_to && (rows.size() + 1) % 2 == 0) work(*every_ws);
+  // "Rows 1, 3 and 5 (RS): Knit.": rows 3 and 5, worked when their turn comes; by row number, with the heading's line.
+  std::map<int, Instructions> later;
+  // The rows before row `up_to` that the text gave already: left-out wrong-side rows and rows listed apart.
+  const auto implied_ws = [&](int up_to) {
+    for (;;) {
+      const int next = static_cast<int>(rows.size()) + 1;
+      if (const auto it = later.find(next); it != later.end()) {
+        work(it->second);
+        later.erase(it);
+      } else if (every_ws && next < up_to && next % 2 == 0) {
+        work(*every_ws);
+      } else {
+        break;
+      }
+    }
   };
   int line_no = 0;
   bool started = false;
@@ -953,6 +980,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     if (started && h.round != round) throw Error(source, "line " + std::to_string(line_no), "mixes rows (worked flat) and rounds (in the round)");
     round = h.round;
     started = true;
+    for (int r = h.first; r <= std::max(h.last, h.first); ++r)
+      if (const auto it = later.find(r); it != later.end())
+        throw Error(source, "line " + std::to_string(line_no),
+                    std::string(round ? "round " : "row ") + std::to_string(r) + " is given twice: on line " + std::to_string(it->second.line) + " too");
     implied_ws(h.first);
     const int expected = static_cast<int>(rows.size()) + 1;
     if (h.first != expected || h.last < h.first)
@@ -961,6 +992,14 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
                       " comes where " + (round ? "round " : "row ") + std::to_string(expected) + " was expected (rows are numbered from 1, in order)");
     if (h.last - h.first > 1000) throw Error(source, "line " + std::to_string(line_no), "more than 1000 rows at once");
     std::string body = lower(line.substr(h.colon));
+    for (size_t k = 0; k < h.also.size(); ++k) {
+      const int r = h.also[k], before = k == 0 ? h.first : h.also[k - 1];
+      if (r <= before || r > h.first + 1000)
+        throw Error(source, "line " + std::to_string(line_no), "lists rows out of order: " + std::to_string(r) + " after " + std::to_string(before));
+      if (std::regex_search(body, again_line))
+        throw Error(source, "line " + std::to_string(line_no), "repeats rows under a heading that lists rows apart: give the rows' own instructions");
+      later[r] = Instructions{body, static_cast<int>(h.colon), line_no, round || (h.side != 0 ? h.side > 0 : r % 2 == 1)};
+    }
     // "Rep Rows 1 and 2." as the instructions: those rows again, as they were.
     std::smatch m;
     for (int r = h.first; r <= h.last; ++r) {
@@ -975,6 +1014,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     }
   }
   implied_ws(static_cast<int>(rows.size()) + 2);  // a pattern that ends on a right-side row ends with its wrong-side row
+  if (!later.empty())
+    throw Error(source, "line " + std::to_string(later.begin()->second.line),
+                std::string(round ? "gives round " : "gives row ") + std::to_string(later.begin()->first) + ", but no line gives " +
+                    (round ? "round " : "row ") + std::to_string(rows.size() + 1) + " before it");
   if (rows.empty()) throw Error(source, "", "holds no rows: written instructions start 'Row 1: ...' or 'Rnd 1: ...'");
   if (p.note.empty()) p.note = description;
   p.flat = !round;

@@ -127,6 +127,23 @@ TEST(WrittenPattern, RowsRepeatedAsManyTimesMoreAsSaid) {
   }
 }
 
+TEST(WrittenPattern, RowsListedApartAreWorkedWhenTheirTurnComes) {
+  // Stitch dictionaries write alike rows under one heading: "Rows 1 and 3 (RS): ...", "Rows 2, 4 and 6: ...".
+  const auto eight = mesh::parse_pattern("Row 1 (RS): knit.\nRow 2: purl.\nRow 3: knit.\nRow 4: purl.\nRow 5: purl.\nRow 6: purl.\n", "a.txt");
+  for (const char* text : {"Rows 1 and 3 (RS): Knit.\nRows 2 and 4: Purl.\nRow 5: Purl.\nRow 6: Purl.\n",
+                           "Rows 1 & 3: Knit.\nRows 2, 4 and 6: Purl.\nRow 5: Purl.\n",
+                           "Rows 1, 3: Knit.\nRows 2, 4, and 6 (WS): Purl.\nRow 5 (RS): Purl.\n"}) {
+    SCOPED_TRACE(text);
+    const auto p = mesh::parse_pattern(text, "b.txt");
+    EXPECT_EQ(p.rows, eight.rows);
+  }
+  // A row given twice, a row no line gives, and rows listed backwards are refused.
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "l.txt"); }); };
+  EXPECT_EQ(error("Rows 1 and 3: Knit.\nRow 2: Purl.\nRow 3: Purl.\n"), "l.txt: line 3: row 3 is given twice: on line 1 too");
+  EXPECT_EQ(error("Rows 1 and 3: Knit.\n"), "l.txt: line 1: gives row 3, but no line gives row 2 before it");
+  EXPECT_EQ(error("Rows 1, 5 and 3: Knit.\nRow 2: Purl.\n"), "l.txt: line 1: lists rows out of order: 3 after 5");
+}
+
 TEST(WrittenPattern, AStitchPatternsCountsAndMultipleAreCheckedAgainstItsRows) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "m.txt"); }); };
   // As written: k2 edges and a repeat of 4, counts of 4 repeats plus 2 on every row that gives one.
