@@ -233,11 +233,14 @@ void check_stacking(const Pattern& p, const std::vector<int>& row_line, const st
     if (p.whole && r + 1 == n) break;  // a shaped piece is knitted once: its last row is bound off, not stacked
     const int above = (r + 1) % n, made = loops_made(p.rows[r]), taken = loops_taken(p.rows[above]);
     if (made == taken) continue;
+    const auto loops = [](int count) { return std::to_string(count) + (count == 1 ? " loop" : " loops"); };
     if (above == 0)
-      throw Error(source, at(row_line[0]), "the first row takes " + std::to_string(taken) + " loops but the last row (line " +
-                                               std::to_string(row_line[r]) + ") makes " + std::to_string(made) + ", so the repeat cannot stack");
-    throw Error(source, at(row_line[above]), "this row takes " + std::to_string(taken) + " loops but the row below it (line " +
-                                                 std::to_string(row_line[r]) + ") makes " + std::to_string(made));
+      throw Error(source, at(row_line[0]), "the first row takes " + loops(taken) + " but the last row (line " + std::to_string(row_line[r]) +
+                                               ") makes " + std::to_string(made) + ", so the repeat cannot stack");
+    throw Error(source, at(row_line[above]), "this row takes " + loops(taken) + " but the row below it (line " + std::to_string(row_line[r]) +
+                                                 ") makes " + std::to_string(made) +
+                                                 (p.whole ? "" : " (a repeating stitch pattern keeps its count from row to row; a shaped piece is written "
+                                                                 "with 'Cast on N sts.' and every row whole)"));
   }
 }
 

@@ -809,6 +809,11 @@ void append_row(Pattern& p, const std::vector<Item>& items) {
 
 /// A shaped piece's rows as written, each row whole; "Cast on N sts." in the description must match the first row.
 Pattern shaped_piece(Pattern p, std::vector<WrittenRow>& rows, const std::string& description, const std::string& source) {
+  // A piece knitted in rounds is a tube, which a piece's flat layout would silently open out.
+  if (!p.flat)
+    throw Error(source, "line " + std::to_string(rows[0].line),
+                "is a piece worked in rounds ('Cast on N sts.' and rounds written whole): a tube, which skein does not build from written "
+                "instructions yet; without the cast-on line its rounds are read as a stitch pattern");
   p.whole = true;
   static const std::regex cast_on(R"(cast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
   std::smatch m;

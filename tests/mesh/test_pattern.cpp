@@ -65,9 +65,9 @@ TEST(Pattern, ErrorsNameTheLineColumnAndRule) {
   EXPECT_NE(error_in("format tiles\nK Y2\n").find("line 2, column 3: unknown tile 'Y2'; the tiles are K P F B YS 2U Y3Y"), std::string::npos);
   EXPECT_NE(error_in("format tiles\nK k\n").find("unknown tile 'k'"), std::string::npos);
   // kp makes two loops from one: the row above must take two.
-  EXPECT_NE(error_in("format knit\nk\nkp\n").find("line 2: this row takes 1 loops but the row below it (line 3) makes 2"), std::string::npos)
+  EXPECT_NE(error_in("format knit\nk\nkp\n").find("line 2: this row takes 1 loop but the row below it (line 3) makes 2"), std::string::npos)
       << error_in("format knit\nk\nkp\n");
-  EXPECT_NE(error_in("format knit\nk k\nkp\n").find("the first row takes 1 loops but the last row (line 2) makes 2"), std::string::npos)
+  EXPECT_NE(error_in("format knit\nk k\nkp\n").find("the first row takes 1 loop but the last row (line 2) makes 2"), std::string::npos)
       << error_in("format knit\nk k\nkp\n");
   const std::string missing = skein::testing::error_of([] { read_pattern("/no/such/pattern.knit"); });
   EXPECT_NE(missing.find("/no/such/pattern.knit: does not exist"), std::string::npos) << missing;

@@ -191,8 +191,12 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
             "p.txt: line 2, column 8: travelling stitches on wrong-side rows have no model yet: cross them on right-side rows (a cable of knits, "
             "worked in purl, crosses on either side)");
   EXPECT_EQ(error("Rnd 1: k1, sk2p, k1.\n"), "p.txt: line 1, column 12: 'sk2p' has a stitch model only between two yarn-overs ('yo, sk2p, yo', Leaf's y3y)");
+  EXPECT_EQ(error("Cast on 8 sts.\nRnd 1: K1, m1, k to end. (9 sts)\nRnd 2: Knit.\n"),
+            "p.txt: line 2: is a piece worked in rounds ('Cast on N sts.' and rounds written whole): a tube, which skein does not build from "
+            "written instructions yet; without the cast-on line its rounds are read as a stitch pattern");
   EXPECT_EQ(error("Row 1: knit.\nCast on loosely.\n"), "p.txt: line 2: expected a row: 'Row N (RS): ...', 'Rows N and M: ...' or 'Rnd N: ...'");
-  EXPECT_EQ(error("Rnd 1: k2tog.\nRnd 2: k2.\n"), "p.txt: line 2: this row takes 2 loops but the row below it (line 1) makes 1");
+  EXPECT_EQ(error("Rnd 1: k2tog.\nRnd 2: k2.\n"), "p.txt: line 2: this row takes 2 loops but the row below it (line 1) makes 1"
+            " (a repeating stitch pattern keeps its count from row to row; a shaped piece is written with 'Cast on N sts.' and every row whole)");
   EXPECT_EQ(error("Row 1: " + std::string(5000, 'k') + "\n"), "p.txt: line 1: is longer than 4096 characters");
   EXPECT_EQ(error("Row 1: K4.\nRow 2: P5.\n"),
             "p.txt: line 1: is 4 stitches wide with no '*' repeat, but the pattern's repeat is 20: write the rows as wide, or mark their repeats with "
@@ -200,7 +204,8 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   EXPECT_EQ(error("Row 1 (RS): K2, sl1, yo, sl1, k2.\nRow 2: Purl.\n"),
             "p.txt: line 1, column 22: a yarn-over has a stitch model beside its decrease ('yo, ssk', 'k2tog, yo', 'yo, sk2p, yo', ...) or beside a "
             "plain knit or purl stitch it increases into ('k1, yo', 'yo, p1'); here it has neither");
-  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "p.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5");
+  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "p.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5"
+            " (a repeating stitch pattern keeps its count from row to row; a shaped piece is written with 'Cast on N sts.' and every row whole)");
   EXPECT_EQ(error("Row 1: knit.\nRow 2 or so: purl.\n"),
             "p.txt: line 2: a row heading this reader cannot read: write 'Row N:', 'Row N (RS):', 'Rows N and M:', 'Rows N-M:' or 'Rnd N:' "
             "(patterns/FORMAT.md)");
@@ -472,7 +477,8 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
   const auto filled = mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K2tog, k2.\nRow 2: Knit.\nRow 3: K1, k2tog.\n", "s.txt");
   ASSERT_TRUE(filled.whole);
   EXPECT_EQ(filled.rows[1], (std::vector<std::string>{"p", "p", "p"}));
-  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "s.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5");
+  EXPECT_EQ(error("Row 1 (RS): K2, yo, k2.\nRow 2: Purl.\n"), "s.txt: line 2: this row takes 4 loops but the row below it (line 1) makes 5"
+            " (a repeating stitch pattern keeps its count from row to row; a shaped piece is written with 'Cast on N sts.' and every row whole)");
   EXPECT_NE(error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n").find("this row takes 4 loops but the row below it (line 2) makes 3"), std::string::npos)
       << error("Cast on 4 sts.\nRow 1: K2tog, k2.\nRow 2: K4.\n");
   // Shaping as sweater patterns write it: "K1, ssk, k to last 3 sts, k2tog, k1", the fill as wide as the row below leaves.
