@@ -223,7 +223,7 @@ public:
     std::smatch m;
     if (std::regex_search(m_text, m, stated)) {
       m_stated = count_of(m[1].matched ? m[1].str() : m[2].str());
-      m_stated_column = m_offset + static_cast<int>(m.position(0)) + 1;
+      m_stated_column = column(static_cast<size_t>(m.position(0)));
       m_text.erase(static_cast<size_t>(m.position(0)));
     }
   }
@@ -234,8 +234,15 @@ public:
   int stated_column() const { return m_stated_column; }
 
 private:
-  [[noreturn]] void fail(size_t at, const std::string& rule) const {
-    throw Error(m_source, "line " + std::to_string(m_line) + ", column " + std::to_string(m_offset + static_cast<int>(at) + 1), rule);
+  /// The 1-based column, in characters, of byte `at` of the instructions: "K1—M1R" has a dash of three bytes.
+  int column(size_t at) const {
+    const auto characters = std::count_if(m_text.begin(), m_text.begin() + static_cast<long>(std::min(at, m_text.size())),
+                                          [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; });
+    return m_offset + static_cast<int>(characters) + 1;
+  }
+  [[noreturn]] void fail(size_t at, const std::string& rule) const { fail_column(column(at), rule); }
+  [[noreturn]] void fail_column(int column, const std::string& rule) const {
+    throw Error(m_source, "line " + std::to_string(m_line) + ", column " + std::to_string(column), rule);
   }
   bool match(const char* pattern, std::smatch& m) {
     // Compiled once per pattern and thread (each is a string literal of this file), not at every token tried.
@@ -266,7 +273,7 @@ private:
   }
   Item stitch(size_t at, const std::string& written, const std::string& rs, const std::string& ws) {
     Item item;
-    item.column = m_offset + static_cast<int>(at) + 1;
+    item.column = column(at);
     item.written = written;
     const std::string& type = m_rs ? rs : ws;
     if (type.empty())
@@ -292,7 +299,7 @@ private:
     return nullptr;
   }
   void add(std::vector<Item>& items, Item item, int count) {
-    if (count < 1 || count > 1000) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': 1 to 1000 stitches");
+    if (count < 1 || count > 1000) fail_column(item.column, "'" + item.written + "': 1 to 1000 stitches");
     for (int i = 0; i < count; ++i) items.push_back(item);
   }
 
@@ -351,7 +358,7 @@ private:
       static const std::regex one_loop(R"((?:k|p)1?|yo1?|(?:k|p)1?(?:\s*tbl|-b))", std::regex::icase);
       const bool single = item.kind == Item::Stitch && item.type.size() == 1 && std::string("kpyxq").find(item.type) != std::string::npos &&
                           std::regex_match(item.written, one_loop);
-      if (!single) fail(static_cast<size_t>(item.column - 1 - m_offset), "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
+      if (!single) fail_column(item.column, "'" + item.written + "': a group worked into one stitch holds single knits, purls and yarn-overs");
       type += item.type;
       written += (written.empty() ? "" : ", ") + item.written;
     }
@@ -359,7 +366,7 @@ private:
     if (group.items.size() < 2 || group.items.size() > 3 || !find_stitch_type(type))
       fail(at, "'(" + written + ") in next st' has no stitch model: two or three stitches into one are read as skein's increase faces "
                "(kp, pk, kpk, pkp, kyk, pyp, xk, ...; seen from the front), and this one would be '" + type + "'");
-    return make(Item::Stitch, "(" + written + ") in next st", static_cast<int>(at) + m_offset + 1, type);
+    return make(Item::Stitch, "(" + written + ") in next st", column(at), type);
   }
 
   /// "with B", "using MC", "change to CC", "join A": the colour worked from here on; false when no declared
@@ -412,13 +419,13 @@ private:
       std::smatch m;
       if (m_text[m_pos] == '*') {
         ++m_pos;
-        items.push_back(make(Item::Star, "*", static_cast<int>(at) + m_offset + 1));
+        items.push_back(make(Item::Star, "*", column(at)));
       } else if (match(R"(rep(?:eat)?\.?\s+from\s+\*(?:\s+(?:to\s+end|across|around|to\s+last\s+(?:(\d+)\s+)?(?:sts?|stitch(?:es)?)))?)", m)) {
         m_pos += static_cast<size_t>(m.length(0));
-        items.push_back(make(Item::Repeat, "rep from *", static_cast<int>(at) + m_offset + 1));
+        items.push_back(make(Item::Repeat, "rep from *", column(at)));
       } else if (m_text[m_pos] == '[' || m_text[m_pos] == '(') {
         ++m_pos;
-        Item g = make(Item::Group, "[", static_cast<int>(at) + m_offset + 1);
+        Item g = make(Item::Group, "[", column(at));
         if (++m_depth > kMaxGroupDepth) fail(at, "groups are nested more than " + std::to_string(kMaxGroupDepth) + " deep");
         g.items = sequence(true);
         --m_depth;
@@ -451,7 +458,7 @@ private:
       } else if (match(R"((knit|purl|k|p)\s+to\s+(?:end|(last)\s+(?:(\d+)\s+)?(?:sts?|stitch(?:es)?)))", m) || match(R"((knit|purl))", m)) {
         m_pos += static_cast<size_t>(m.length(0));
         const bool knit = m[1].str()[0] == 'k';
-        items.push_back(make(Item::Fill, m.str(0), static_cast<int>(at) + m_offset + 1, knit == m_rs ? "k" : "p"));
+        items.push_back(make(Item::Fill, m.str(0), column(at), knit == m_rs ? "k" : "p"));
         if (m.size() > 2 && m[2].matched) items.back().leave = m[3].matched ? count_of(m[3].str()) : 1;  // "k to last st": one
       } else if (match(kSlip, m)) {
         m_pos += static_cast<size_t>(m.length(0));
@@ -491,7 +498,7 @@ private:
           fail(at, "travelling stitches on wrong-side rows have no model yet: cross them on right-side rows (a cable of knits, worked in purl, crosses on either side)");
         // Seen from the front, the cable's left loops cross right: in front (order 1) when the stitches in front
         // travel right, else behind them (order -1).
-        Item c = make(Item::Cable, m.str(0), static_cast<int>(at) + m_offset + 1);
+        Item c = make(Item::Cable, m.str(0), column(at));
         c.over = right ? front : behind;
         c.under = right ? behind : front;
         c.order = right ? 1 : -1;

@@ -180,6 +180,8 @@ TEST(WrittenPattern, ErrorsNameTheLineTheColumnAndTheClosestAbbreviations) {
   const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "p.txt"); }); };
   EXPECT_EQ(error("Row 1 (RS): *k2, p2tog, kk2; rep from * to end.\n"),
             "p.txt: line 1, column 25: unknown abbreviation 'kk2'; did you mean 'k', 'skp', 'p'? (patterns/FORMAT.md lists what is read)");
+  // Columns count characters: the em dash before m1r is one, though three bytes.
+  EXPECT_EQ(error("Row 1 (RS): K1\u2014m1r, k3.\n").substr(0, 25), "p.txt: line 1, column 16:");
   EXPECT_EQ(error("Row 1: k2, m1r, k2.\n"),
             "p.txt: line 1, column 12: 'm1r' is a knitting abbreviation skein has no stitch model for yet; its loop twists the other way from "
             "skein's crossed loops (k1tbl's and m1l's): the nearest are 'm1l' and 'kfb'");
