@@ -218,19 +218,25 @@ public:
       : m_text(text), m_offset(offset), m_rs(right_side), m_source(source), m_line(line), m_palette(palette), m_colour(colour) {
     // The stitch count books give after a row, "K1, kfb, k2. (5 sts)" or "... k2tog — 7 sts.": the stitches on the
     // needle when the row is done, taken off here and checked once the row's width is known.
-    static const std::regex stated(R"((?:[(\[]\s*(\d+)\s*(?:sts?|stitches)(?:\s+(?:remain|on\s+needle))?\s*[)\]]|(?:-|–|—)+\s*(\d+)\s*(?:sts?|stitches))\s*\.?\s*$)",
-                                   std::regex::icase);
+    // Also "(5 sts; 1 st increased)", "... k3. 5 sts." and the change alone: "(2 sts inc'd)", "(1 st dec)".
+    static const std::regex stated(
+        R"((?:[(\[]\s*(\d+)\s*(?:sts?|stitches)(?:\s+(?:remain|on\s+needle))?\s*(?:[;,][^)\]]*)?[)\]]|(?:-|–|—)+\s*(\d+)\s*(?:sts?|stitches))"
+        R"(|[(\[]\s*(\d+)\s*(?:sts?|stitches)\s+(inc|dec)(?:'d|reased|d)?\s*[)\]]|\.\s+(\d+)\s*(?:sts?|stitches))\s*\.?\s*$)",
+        std::regex::icase);
     std::smatch m;
     if (std::regex_search(m_text, m, stated)) {
-      m_stated = count_of(m[1].matched ? m[1].str() : m[2].str());
-      m_stated_column = column(static_cast<size_t>(m.position(0)));
-      m_text.erase(static_cast<size_t>(m.position(0)));
+      if (m[3].matched) m_change = (lower(m[4].str()) == "inc" ? 1 : -1) * count_of(m[3].str());
+      else m_stated = count_of(m[1].matched ? m[1].str() : m[2].matched ? m[2].str() : m[5].str());
+      m_stated_column = column(static_cast<size_t>(m.position(0) + (m[5].matched ? 1 : 0)));
+      m_text.erase(static_cast<size_t>(m.position(0) + (m[5].matched ? 1 : 0)));  // "k3. 5 sts.": the row keeps its period
     }
   }
 
   std::vector<Item> read() { return sequence(false); }
   /// The stitch count written after the row, or 0; and its column.
   int stated_count() const { return m_stated; }
+  /// The change of count written after the row ("(2 sts inc'd)": +2), if that is what it says.
+  std::optional<int> stated_change() const { return m_change; }
   int stated_column() const { return m_stated_column; }
 
 private:
@@ -568,6 +574,7 @@ private:
 
   std::string m_text;
   int m_stated = 0, m_stated_column = 0;
+  std::optional<int> m_change;
   int m_offset;
   bool m_rs;
   std::string m_source;
@@ -616,6 +623,7 @@ struct WrittenRow {
   int partial_fill = 0;  ///< the column of a `k to end` or `k to last N sts` beside other stitches (shaped pieces only), or 0
   int line = 0;
   int stated = 0, stated_column = 0;  ///< the stitch count written after the row ("(5 sts)") and its column, or 0
+  std::optional<int> change;          ///< or the change it says ("(2 sts inc'd)": +2)
   int edges() const { return loops_taken(before) + loops_taken(after); }
   /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
   int left_edge() const { return loops_taken(right_side ? after : before); }
@@ -889,6 +897,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
     InstructionReader reader(w.body, w.offset, w.right_side, source, w.line, p.palette, colour);
     rows.push_back(split_row(reader.read(), w.right_side, w.line, source));
     rows.back().stated = reader.stated_count();
+    rows.back().change = reader.stated_change();
     rows.back().stated_column = reader.stated_column();
     said.push_back(w);
   };
@@ -900,6 +909,7 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       if (!round && (number - k) % 2 != 0) w.right_side = !w.right_side;
       work(w);
       rows.back().stated = 0;  // a row's count is said of the row where it is written, not of its repeats
+      rows.back().change.reset();
     }
   };
   // "Row 2 and all WS rows: Purl.": the instructions of every wrong-side row the text leaves out.
@@ -1052,6 +1062,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       if (stacks && resolved[r].stated > 0 && resolved[r].stated != made)
         throw Error(source, "line " + std::to_string(resolved[r].line) + ", column " + std::to_string(resolved[r].stated_column),
                     "the row makes " + std::to_string(made) + " stitches, but the count written after it says " + std::to_string(resolved[r].stated));
+      if (stacks && resolved[r].change && *resolved[r].change != made - taken)
+        throw Error(source, "line " + std::to_string(resolved[r].line) + ", column " + std::to_string(resolved[r].stated_column),
+                    "the row makes " + std::to_string(made) + " stitches from " + std::to_string(taken) + ", but the count written after it says " +
+                        std::to_string(std::abs(*resolved[r].change)) + (*resolved[r].change >= 0 ? " increased" : " decreased"));
     }
     if (stacks) return shaped_piece(std::move(p), resolved, description, source);
   }

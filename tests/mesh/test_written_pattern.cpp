@@ -449,6 +449,13 @@ TEST(WrittenPattern, AKfbWedgeWidensAndItsStitchCountsAreChecked) {
             "w.txt: line 2, column 26: the row makes 5 stitches, but the count written after it says 6");
   // Repeated rows do not repeat the count of the row they copy.
   EXPECT_EQ(mesh::parse_pattern("Cast on 4 sts.\nRow 1 (RS): K1, kfb, k to end. (5 sts)\nRow 2: Purl.\nRep Rows 1 and 2 once more.\n", "w.txt").rows[3].size(), 6u);
+  // Counts as books also write them: after a period, with the change, or the change alone; each checked.
+  const auto four = [](const std::string& row) { return "Cast on 4 sts.\nRow 1 (RS): " + row + "\nRow 2: Purl.\n"; };
+  for (const char* row : {"K1, kfb, k2. 5 sts.", "K1, kfb, k2 (5 sts; 1 st increased).", "K1, kfb, k2 (1 st inc).", "K1, kfb, k2 (1 st inc'd)."})
+    EXPECT_EQ(mesh::parse_pattern(four(row), "w.txt").rows[1].size(), 5u) << row;
+  EXPECT_EQ(mesh::parse_pattern(four("K1, k2tog, k1 (1 st dec)."), "w.txt").rows[1].size(), 3u);
+  EXPECT_EQ(error_of([&] { mesh::parse_pattern(four("K1, kfb, k2 (2 sts inc'd)."), "w.txt"); }),
+            "w.txt: line 2, column 25: the row makes 5 stitches from 4, but the count written after it says 2 increased");
 }
 
 TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
