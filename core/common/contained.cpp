@@ -13,7 +13,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <new>
+#include <sstream>
 
 #include "common/error.hpp"
 
@@ -108,9 +110,30 @@ ContainedLimits ContainedLimits::from_environment() {
   return limits;
 }
 
-std::string run_contained(const std::string& file, const std::string& what, const ContainedLimits& limits,
-                          const std::function<std::string()>& work) {
-  if (!(limits.seconds > 0)) throw Error(file, "", what + " needs a time limit");
+namespace {
+
+/// The CPU time a process has used so far [s], from /proc; 0 when it cannot be read.
+double cpu_seconds(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto name_end = stat.rfind(')');  // fields 14 and 15 (utime, stime) come after the name, in parentheses
+  if (name_end == std::string::npos) return 0;
+  std::istringstream fields(stat.substr(name_end + 2));
+  std::string field;
+  double ticks = 0;
+  for (int k = 3; k <= 15 && fields >> field; ++k)
+    if (k >= 14) ticks += std::atof(field.c_str());
+  return ticks / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+struct Attempt {
+  std::string answer;
+  int status = 0;
+  bool late = false;
+  bool stuck = false;  ///< late, having used under a tenth of the time on the CPU
+};
+
+Attempt attempt(const std::string& file, const std::string& what, const ContainedLimits& limits, const std::function<std::string()>& work) {
   int fds[2];
   if (::pipe(fds) != 0) throw Error(file, "", what + " could not start: pipe: " + std::strerror(errno));
   const pid_t pid = ::fork();
@@ -127,14 +150,13 @@ std::string run_contained(const std::string& file, const std::string& what, cons
   }
   ::close(fds[1]);
   // Read everything the child writes until it closes the pipe (by exiting or dying), or the deadline.
-  std::string answer;
+  Attempt a;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limits.seconds);
-  bool late = false;
   char buffer[1 << 16];
   for (;;) {
     const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
     if (left <= 0) {
-      late = true;
+      a.late = true;
       break;
     }
     pollfd p{fds[0], POLLIN, 0};
@@ -144,13 +166,30 @@ std::string run_contained(const std::string& file, const std::string& what, cons
     const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
-    answer.append(buffer, static_cast<size_t>(n));
+    a.answer.append(buffer, static_cast<size_t>(n));
   }
   ::close(fds[0]);
-  if (late) ::kill(pid, SIGKILL);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  if (a.late) {
+    a.stuck = cpu_seconds(pid) < 0.1 * limits.seconds;
+    ::kill(pid, SIGKILL);
   }
+  while (::waitpid(pid, &a.status, 0) < 0 && errno == EINTR) {
+  }
+  return a;
+}
+
+}  // namespace
+
+std::string run_contained(const std::string& file, const std::string& what, const ContainedLimits& limits,
+                          const std::function<std::string()>& work) {
+  if (!(limits.seconds > 0)) throw Error(file, "", what + " needs a time limit");
+  Attempt a = attempt(file, what, limits, work);
+  // A child forked while another thread of this process held a lock (a library's, not malloc's) can wait on it
+  // forever: a child that ran out of time without using the CPU was stuck, not slow, and is started once more.
+  if (a.late && a.stuck) a = attempt(file, what, limits, work);
+  const std::string& answer = a.answer;
+  const int status = a.status;
+  const bool late = a.late;
   const auto gb = [&] {
     char text[32];
     std::snprintf(text, sizeof text, "%g", limits.memory_gb);

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -49,6 +51,22 @@ TEST(ContainedReader, RunningOutOfMemoryOrTimeStopsTheReader) {
   });
   EXPECT_EQ(msg, "slow.obj: the mesh reader took longer than 0.3 s (SKEIN_READER_SECONDS) and was stopped");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 10);
+}
+
+TEST(ContainedReader, AChildStuckWithoutUsingTheCpuIsStartedOnceMore) {
+  // As a child forked while another thread held a lock waits on it: the first one sleeps past the limit (a file
+  // says it came), the second answers.
+  const auto marker = std::filesystem::temp_directory_path() / ("skein-stuck-" + std::to_string(::getpid()));
+  std::filesystem::remove(marker);
+  const std::string answer = run_contained("stuck.vdb", "the OpenVDB reader", {4, 0.5}, [&] {
+    if (!std::filesystem::exists(marker)) {
+      std::ofstream(marker) << "came";
+      ::sleep(30);
+    }
+    return std::string("read");
+  });
+  std::filesystem::remove(marker);
+  EXPECT_EQ(answer, "read");
 }
 
 TEST(ContainedReader, AnswersAndErrorsComeBackWhole) {
