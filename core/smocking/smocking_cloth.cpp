@@ -9,13 +9,11 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
+#include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
+#include <Eigen/SparseCore>
 #include <dlfcn.h>
 #include <omp.h>
-
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 
 #include "common/closest_points.hpp"
 #include "common/error.hpp"
@@ -154,8 +152,8 @@ struct Candidate {
   int a, b;
 };
 
-/// The pairs whose boxes swept from x over x + dir (none: at x alone), padded by `reach`, overlap: every pair that
-/// comes within `reach` anywhere on the step's straight path is among them.
+/// The pairs whose boxes, swept from x over x + dir (none: at x alone), come within `reach` of each other: every
+/// pair that comes within `reach` anywhere on the step's straight path is among them.
 std::vector<Candidate> step_candidates(const Fabric& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd* dir, double reach) {
   std::vector<Candidate> found;
   candidate_pairs(f, x, dir, 0.5 * reach, [&](bool point_triangle, int a, int b) { found.push_back({point_triangle, a, b}); });
@@ -367,13 +365,13 @@ private:
   /// new unknown k = old unknown order[k]
   std::vector<int> fill_reducing_order(Triplets constant, Triplets varying) const {
     constant.insert(constant.end(), varying.begin(), varying.end());
-    Eigen::SparseMatrix<double> lower = assemble(constant);
+    const Eigen::SparseMatrix<double> upper = assemble(constant);
     cholmod_common common;
     cholmod_start(&common);
     common.nmethods = 2;
     common.method[0].ordering = CHOLMOD_METIS;
     common.method[1].ordering = CHOLMOD_AMD;
-    cholmod_sparse a = Eigen::viewAsCholmod(lower);
+    cholmod_sparse a = Eigen::viewAsCholmod(upper);
     a.stype = 1;
     cholmod_factor* factor = cholmod_analyze(&a, &common);
     std::vector<int> order(static_cast<std::size_t>(m_size));
