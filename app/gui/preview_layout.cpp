@@ -2,6 +2,7 @@
 
 #include <QDialog>
 #include <QLabel>
+#include <QMetaObject>
 #include <QScrollArea>
 #include <QVBoxLayout>
 
@@ -23,6 +24,22 @@ PreviewWidgets lay_out_preview(QDialog* dialog, QLayout* controls, const QString
   layout->addWidget(scroll, 1);
   layout->addWidget(w.summary);
   return w;
+}
+
+void PreviewWorker::start(QObject* owner, std::function<std::function<void()>()> work) {
+  join();
+  m_done = false;
+  m_thread = std::thread([this, owner, work = std::move(work)] {
+    auto then = work();
+    QMetaObject::invokeMethod(owner, [this, then = std::move(then)] {
+      then();
+      m_done = true;
+    });
+  });
+}
+
+void PreviewWorker::join() {
+  if (m_thread.joinable()) m_thread.join();
 }
 
 }  // namespace skein::gui

@@ -66,7 +66,7 @@ SmockingDialog::SmockingDialog(QWidget* parent) : QDialog(parent) {
 
 SmockingDialog::~SmockingDialog() {
   m_stop = true;  // the worker stops at its next Newton step
-  if (m_worker.joinable()) m_worker.join();
+  m_worker.join();
 }
 
 void SmockingDialog::set_busy(bool busy) {
@@ -121,13 +121,11 @@ void SmockingDialog::smock_in_3d() {
   if (busy()) return;
   gather();
   if (!m_embedding) return;
-  if (m_worker.joinable()) m_worker.join();
   set_busy(true);
-  m_done = false;
   m_summary->setText(tr("Smocking in 3-D..."));
   smocking::ClothOptions options;
   options.subdivisions = m_subdivisions->currentText().toInt();
-  m_worker = std::thread([this, pattern = *m_pattern, embedding = *m_embedding, options] {
+  m_worker.start(this, [this, pattern = *m_pattern, embedding = *m_embedding, options]() -> std::function<void()> {
     QImage picture;
     QString summary;
     try {
@@ -148,7 +146,7 @@ void SmockingDialog::smock_in_3d() {
     } catch (const std::exception& e) {
       summary = QString::fromStdString(e.what());
     }
-    QMetaObject::invokeMethod(this, [this, picture, summary] { finish(picture, summary); });
+    return [this, picture, summary] { finish(picture, summary); };
   });
 }
 
@@ -159,7 +157,6 @@ void SmockingDialog::finish(const QImage& image, const QString& summary) {
   }
   m_summary->setText(summary);
   set_busy(false);
-  m_done = true;
 }
 
 void SmockingDialog::show_picture() {

@@ -5,10 +5,10 @@
 
 #include <atomic>
 #include <optional>
-#include <thread>
 
 #include <QDialog>
 
+#include "preview_layout.hpp"
 #include "smocking/smocking_embed.hpp"
 
 class QComboBox;
@@ -34,15 +34,15 @@ public:
   /// Gathers the pattern (as gather()) and drapes the fine fabric in 3-D on a worker thread (smock_cloth); the
   /// picture, front and side, appears when it is done.
   void smock_in_3d();
-  bool busy() const { return m_worker.joinable() && !m_done; }
+  bool busy() const { return m_worker.busy(); }
   bool has_fabric() const { return m_has_fabric; }
 
 private:
   void show_picture();
   void set_busy(bool busy);
   void finish(const QImage& image, const QString& summary);
-  std::thread m_worker;
-  std::atomic<bool> m_done{true}, m_stop{false};
+  PreviewWorker m_worker;
+  std::atomic<bool> m_stop{false};
   bool m_has_fabric = false;
   QComboBox* m_subdivisions = nullptr;
   QPushButton *m_open = nullptr, *m_gather = nullptr, *m_cloth = nullptr;

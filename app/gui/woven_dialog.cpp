@@ -85,9 +85,7 @@ WovenDialog::WovenDialog(QWidget* parent) : QDialog(parent) {
   resize(900, 600);
 }
 
-WovenDialog::~WovenDialog() {
-  if (m_worker.joinable()) m_worker.join();
-}
+WovenDialog::~WovenDialog() { m_worker.join(); }
 
 bool WovenDialog::open_design(const QString& path) {
   try {
@@ -119,9 +117,7 @@ void WovenDialog::render() {
     return;
   }
   if (busy()) return;
-  if (m_worker.joinable()) m_worker.join();
   m_render->setEnabled(false);
-  m_done = false;
   m_summary->setText(m_exemplars ? tr("Rendering...") : tr("Making the bundled exemplars, then rendering..."));
   const woven::Weave design = woven::tiled(*m_design, m_warps->value(), m_wefts->value());
   woven::WovenRenderOptions options;
@@ -130,7 +126,7 @@ void WovenDialog::render() {
   options.height = std::max(8, 2 * options.width / 3);
   options.field = m_field->value();
   auto exemplars = m_exemplars;
-  m_worker = std::thread([this, design, options, exemplars]() mutable {
+  m_worker.start(this, [this, design, options, exemplars]() mutable -> std::function<void()> {
     QImage picture;
     QString summary;
     try {
@@ -159,10 +155,10 @@ void WovenDialog::render() {
     } catch (const std::exception& e) {
       summary = QString::fromStdString(e.what());
     }
-    QMetaObject::invokeMethod(this, [this, picture, summary, exemplars] {
+    return [this, picture, summary, exemplars] {
       if (!m_exemplars) m_exemplars = exemplars;
       finish(picture, summary);
-    });
+    };
   });
 }
 
@@ -173,7 +169,6 @@ void WovenDialog::finish(const QImage& image, const QString& summary) {
   }
   m_summary->setText(summary);
   m_render->setEnabled(true);
-  m_done = true;
 }
 
 }  // namespace skein::gui

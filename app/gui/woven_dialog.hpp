@@ -2,14 +2,13 @@
 // File > Woven preview (issue 29): a woven design synthesized from exemplars and rendered (Zhao 2012; docs/woven.md).
 // The synthesis and the path tracing run on a worker thread; the picture appears when it is done.
 
-#include <atomic>
 #include <memory>
 #include <optional>
-#include <thread>
 #include <vector>
 
 #include <QDialog>
 
+#include "preview_layout.hpp"
 #include "woven/exemplar.hpp"
 #include "woven/weave.hpp"
 
@@ -32,7 +31,7 @@ public:
   bool open_exemplars(const QString& folder);
   /// Synthesizes the design at the fields' size and renders it on a worker thread.
   void render();
-  bool busy() const { return m_worker.joinable() && !m_done; }
+  bool busy() const { return m_worker.busy(); }
   bool has_picture() const { return m_has_picture; }
 
 private:
@@ -40,8 +39,7 @@ private:
   std::optional<woven::Weave> m_design;
   QString m_design_name;
   std::shared_ptr<const std::vector<woven::Exemplar>> m_exemplars;
-  std::thread m_worker;
-  std::atomic<bool> m_done{true};
+  PreviewWorker m_worker;
   bool m_has_picture = false;
   QSpinBox *m_warps = nullptr, *m_wefts = nullptr, *m_samples = nullptr, *m_width = nullptr;
   QDoubleSpinBox* m_field = nullptr;
