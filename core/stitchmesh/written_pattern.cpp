@@ -797,6 +797,23 @@ bool fill_to(WrittenRow& row, int below, const std::string& source) {
   return true;
 }
 
+/// Writes a shaped piece's `*` repeat out as often as the `below` loops leave room for beside its edge stitches
+/// (`*k2, m1; rep from * to end` over 8 sts: four times), so the row is whole. Returns false when the repeat does
+/// not fill that room a whole number of times.
+bool widen_repeat(WrittenRow& row, int below) {
+  if (!row.starred) return true;
+  const int room = below - row.edges(), width = loops_taken(row.repeat);
+  if (room < width || room % width != 0) return false;
+  std::vector<Item> whole = row.before;
+  for (int c = 0; c < room / width; ++c) whole.insert(whole.end(), row.repeat.begin(), row.repeat.end());
+  whole.insert(whole.end(), row.after.begin(), row.after.end());
+  row.before.clear();
+  row.after.clear();
+  row.repeat = std::move(whole);
+  row.starred = false;
+  return true;
+}
+
 /// Appends one row of worked items to the pattern: its stitch types, a cable's crossing (its loops knitted) and
 /// each stitch's colour.
 void append_row(Pattern& p, const std::vector<Item>& items) {
@@ -1044,17 +1061,29 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   if (p.note.empty()) p.note = description;
   p.flat = !round;
 
-  // A piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), no '*' repeat, and every
-  // row written whole, taking the loops the row below made. It is knitted once, as written, shaped or not: `knit`,
-  // `k to end` and `k to last N sts` take what the row below leaves them.
+  // A piece (issue 26): "Cast on N sts." (where a stitch pattern says "Multiple of N sts"), each row taking the
+  // loops the row below made. It is knitted once, as written, shaped or not: `knit`, `k to end` and `k to last N sts`
+  // take what the row below leaves them, and a '*' repeat is worked as often as they leave room for. Cast on and
+  // never shaped inside a '*' repeat, the rows are a stitch pattern's (the cast-on count one width of it).
   static const std::regex cast_on(R"(\bcast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
   std::smatch cast;
-  if (std::regex_search(description, cast, cast_on) && std::none_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; })) {
+  const bool starred = std::any_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; });
+  const bool shaped_repeat =
+      std::any_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred && loops_made(r.repeat) != loops_taken(r.repeat); });
+  if (std::regex_search(description, cast, cast_on) && (!starred || shaped_repeat)) {
     const int cast_on_count = count_of(cast[1].str());
     std::vector<WrittenRow> resolved = rows;
     bool stacks = true;
     int below = cast_on_count;
     for (size_t r = 0; r < resolved.size() && stacks; ++r) {
+      if (!widen_repeat(resolved[r], below)) {
+        // Shaped inside a repeat, the rows can only be a piece's: say which row does not fit.
+        const WrittenRow& row = rows[r];
+        const std::string edges = row.edges() > 0 ? " less its " + std::to_string(row.edges()) + " edge stitches (" + std::to_string(below - row.edges()) + ")" : "";
+        throw Error(source, "line " + std::to_string(row.line),
+                    "its '*' repeat takes " + std::to_string(loops_taken(row.repeat)) + " loops, which do not fill " +
+                        (r == 0 ? "the cast-on's " : "the row below's ") + std::to_string(below) + " sts" + edges + " a whole number of times");
+      }
       if (!fill_to(resolved[r], below, source)) stacks = false;
       const int taken = loops_taken(resolved[r].repeat), made = loops_made(resolved[r].repeat);
       stacks = stacks && (r == 0 || taken == below);
@@ -1068,6 +1097,18 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
                         std::to_string(std::abs(*resolved[r].change)) + (*resolved[r].change >= 0 ? " increased" : " decreased"));
     }
     if (stacks) return shaped_piece(std::move(p), resolved, description, source);
+    if (shaped_repeat) {
+      // Shaped inside a repeat, the rows can only be a piece's: name the first row that does not take what the row below made.
+      int made_below = cast_on_count;
+      for (size_t r = 0; r < resolved.size(); ++r) {
+        const int taken = loops_taken(resolved[r].repeat);
+        if (r > 0 && taken != made_below)
+          throw Error(source, "line " + std::to_string(resolved[r].line),
+                      "takes " + std::to_string(taken) + " loops, but the row below (line " + std::to_string(resolved[r - 1].line) + ") makes " +
+                          std::to_string(made_below) + " (a piece cast on and shaped inside a '*' repeat takes, row by row, the loops the row below made)");
+        made_below = loops_made(resolved[r].repeat);
+      }
+    }
   }
   for (const auto& row : rows)
     if (row.partial_fill > 0)

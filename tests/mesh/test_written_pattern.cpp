@@ -512,6 +512,34 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
             "'to last N sts', only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
 }
 
+TEST(WrittenPattern, AShapedPieceWorksItsRepeatAsOftenAsTheRowBelowLeavesRoom) {
+  // Shaping inside a '*' repeat after a cast-on: each row's repeat is worked as often as the loops of the row below
+  // leave room for beside its edge stitches, and the counts are checked as in any piece.
+  const auto p = mesh::parse_pattern("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end. (12 sts)\nRow 2: Purl.\n"
+                                     "Row 3: K1, *k2, k2tog; rep from * to last 3 sts, k3. (10 sts)\nRow 4: Purl.\n",
+                                     "w.txt");
+  ASSERT_TRUE(p.whole);
+  ASSERT_EQ(p.height(), 4);
+  EXPECT_EQ(p.rows[0], (std::vector<std::string>{"xk", "k", "xk", "k", "xk", "k", "xk", "k"}));  // four repeats, right to left
+  EXPECT_EQ(p.rows[1].size(), 12u);
+  std::vector<std::string> dec_row{"k", "k", "k", "d12k", "k", "k", "d12k", "k", "k", "k"};  // k3 on the left, k1 on the right
+  EXPECT_EQ(p.rows[2], dec_row);
+  EXPECT_EQ(p.rows[3].size(), 10u);
+  EXPECT_TRUE(mesh::validate(mesh::pattern_stitch_mesh(p, 1, 1)).valid());
+  const auto error = [](const std::string& text) { return error_of([&] { mesh::parse_pattern(text, "s.txt"); }); };
+  EXPECT_EQ(error("Cast on 9 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: Purl.\n"),
+            "s.txt: line 2: its '*' repeat takes 2 loops, which do not fill the cast-on's 9 sts a whole number of times");
+  EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: P1, *p2, p2tog; rep from * to last st, p1.\n"),
+            "s.txt: line 3: its '*' repeat takes 4 loops, which do not fill the row below's 12 sts less its 2 edge stitches (10) a whole number of times");
+  EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: p10.\n"),
+            "s.txt: line 3: takes 10 loops, but the row below (line 2) makes 12 (a piece cast on and shaped inside a '*' repeat takes, row by row, "
+            "the loops the row below made)");
+  EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end. (13 sts)\nRow 2: Purl.\n"),
+            "s.txt: line 2, column 41: the row makes 12 stitches, but the count written after it says 13");
+  // Cast on, with repeats that keep the count: a stitch pattern, as before (the cast-on one width of it).
+  EXPECT_FALSE(mesh::parse_pattern("Cast on 12 sts.\nRow 1 (RS): *K2, p2; rep from * to end.\nRow 2: *K2, p2; rep from * to end.\n", "r.txt").whole);
+}
+
 TEST(WrittenPattern, GroupsNestedPastSixteenDeepAreRefusedNotRecursedInto) {
   // A fuzzer's input: thousands of '(' overflowed the stack of the recursive group reader.
   const auto nested = [](int depth) {
