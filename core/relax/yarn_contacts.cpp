@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <tuple>
 
 #include "relax/guard_model.hpp"
 
@@ -48,10 +49,14 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
   const auto spheres = segment_spheres(system, points);
   const int n = system.num_segments();
   const double reach = 2 * system.radius + margin;
-  double largest = 0;
-  for (const auto& s : spheres) largest = std::max(largest, s.radius);
-  // Two spheres that can be close enough have centres at most 2 R_max + reach apart: one cell.
-  const double cell = 2 * largest + reach;
+  // The cells suit the spheres of all but the largest hundredth of the segments (a few long ones would make them
+  // several times larger): two such spheres close enough have centres less than 2 R_small + reach apart, within one
+  // cell of each other. A larger sphere looks as many cells out as its radius needs.
+  std::vector<double> radii(n);
+  for (int s = 0; s < n; ++s) radii[s] = spheres[s].radius;
+  const int percentile = std::min(n - 1, n - n / 100);
+  std::nth_element(radii.begin(), radii.begin() + percentile, radii.end());
+  const double small = radii[percentile], cell = 2 * small + reach;
   const auto cell_of = [&](const Eigen::Vector3d& c) {
     return Eigen::Vector3i(static_cast<int>(std::floor(c.x() / cell)), static_cast<int>(std::floor(c.y() / cell)),
                            static_cast<int>(std::floor(c.z() / cell)));
@@ -60,24 +65,100 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
     const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20)) & 0x1fffff); };
     return (part(c.x()) << 42) | (part(c.y()) << 21) | part(c.z());
   };
+  // The segments sorted by cell, their spheres copied in that order (each cell's contiguous), and the occupied
+  // cells with where their segments start.
   std::vector<std::pair<std::uint64_t, int>> sorted(n);
+#pragma omp parallel for schedule(static)
   for (int s = 0; s < n; ++s) sorted[s] = {key(cell_of(spheres[s].center)), s};
   std::sort(sorted.begin(), sorted.end());
-  std::vector<std::vector<int>> lists(n);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int s = 0; s < n; ++s) {
-    const Eigen::Vector3i home = cell_of(spheres[s].center);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto k = key(home + Eigen::Vector3i(dx, dy, dz));
-          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(k, -1));
-          for (; it != sorted.end() && it->first == k; ++it)
-            if (!system.consecutive(s, it->second) && close_enough(spheres[s], spheres[it->second], reach))
-              lists[s].push_back(it->second);
-        }
+  std::vector<SegmentSphere> ball(n);
+  std::vector<char> large(n);
+  std::vector<int> larges;
+  std::vector<std::uint64_t> cell_key;
+  std::vector<int> cell_start;
+  for (int i = 0; i < n; ++i) {
+    ball[i] = spheres[sorted[i].second];
+    large[i] = ball[i].radius > small;
+    if (large[i]) larges.push_back(i);
+    if (i == 0 || sorted[i].first != sorted[i - 1].first) {
+      cell_key.push_back(sorted[i].first);
+      cell_start.push_back(i);
+    }
   }
-  return to_csr(n, lists);
+  const int cells = static_cast<int>(cell_key.size());
+  cell_start.push_back(n);
+  const auto find_cell = [&](const Eigen::Vector3i& c) {
+    const auto k = key(c);
+    const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), k);
+    return it == cell_key.end() || *it != k ? -1 : static_cast<int>(it - cell_key.begin());
+  };
+  const auto view = segment_view(system);
+  const auto touch = [&](int i, int j) {
+    return close_enough(ball[i], ball[j], reach) && !model::consecutive(view, sorted[i].second, sorted[j].second);
+  };
+  // Each unordered pair once. Two small spheres: a cell with itself, and with the 13 of its 26 neighbours that
+  // follow it (the others test it from their side). A large sphere with the small ones in the cells its reach
+  // covers; two large ones with each other.
+  std::vector<Eigen::Vector3i> forward;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz)
+        if (std::make_tuple(dx, dy, dz) > std::make_tuple(0, 0, 0)) forward.emplace_back(dx, dy, dz);
+  const int jobs = cells + static_cast<int>(larges.size());
+  std::vector<std::pair<int, int>> pairs;
+#pragma omp parallel
+  {
+    std::vector<std::pair<int, int>> found;
+    const auto test = [&](int i, int j) {
+      if (touch(i, j)) found.emplace_back(sorted[i].second, sorted[j].second);
+    };
+#pragma omp for schedule(dynamic, 16) nowait
+    for (int job = 0; job < jobs; ++job) {
+      if (job < cells) {
+        const int begin = cell_start[job], end = cell_start[job + 1];
+        for (int i = begin; i < end; ++i)
+          if (!large[i])
+            for (int j = i + 1; j < end; ++j)
+              if (!large[j]) test(i, j);
+        const Eigen::Vector3i home = cell_of(ball[begin].center);
+        for (const auto& offset : forward) {
+          const int other = find_cell(home + offset);
+          if (other < 0) continue;
+          for (int i = begin; i < end; ++i)
+            if (!large[i])
+              for (int j = cell_start[other]; j < cell_start[other + 1]; ++j)
+                if (!large[j]) test(i, j);
+        }
+      } else {
+        const int i = larges[job - cells];
+        const int out = static_cast<int>(std::ceil((ball[i].radius + small + reach) / cell));
+        const Eigen::Vector3i home = cell_of(ball[i].center);
+        for (int dx = -out; dx <= out; ++dx)
+          for (int dy = -out; dy <= out; ++dy)
+            for (int dz = -out; dz <= out; ++dz) {
+              const int other = find_cell(home + Eigen::Vector3i(dx, dy, dz));
+              if (other < 0) continue;
+              for (int j = cell_start[other]; j < cell_start[other + 1]; ++j)
+                if (!large[j]) test(i, j);
+            }
+        for (int j : larges)
+          if (j > i) test(i, j);
+      }
+    }
+#pragma omp critical
+    pairs.insert(pairs.end(), found.begin(), found.end());
+  }
+  // Both ways, each segment's partners sorted (the order the threads found them in does not matter).
+  ContactPairs out;
+  out.start.assign(n + 1, 0);
+  for (const auto& [a, b] : pairs) ++out.start[a + 1], ++out.start[b + 1];
+  std::partial_sum(out.start.begin(), out.start.end(), out.start.begin());
+  out.partner.resize(out.start[n]);
+  std::vector<int> next(out.start.begin(), out.start.end() - 1);
+  for (const auto& [a, b] : pairs) out.partner[next[a]++] = b, out.partner[next[b]++] = a;
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < n; ++s) std::sort(out.partner.begin() + out.start[s], out.partner.begin() + out.start[s + 1]);
+  return out;
 }
 
 ContactPairs find_contact_pairs_brute_force(const YarnSystem& system, const Eigen::Matrix3Xd& points, double margin) {
