@@ -58,6 +58,21 @@ bool PullThroughGuard::pieces_meet(const PairState& pair, const Eigen::Matrix3Xd
   return model::pieces_meet(a0, a1, b0, b1, m_options.max_depth, gap, tests);
 }
 
+void PullThroughGuard::sweep_segments(const Eigen::Matrix3Xd& points, const Eigen::Matrix3Xd& delta, const std::vector<char>& changed) {
+  m_swept.resize(m_system.num_segments());
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < m_system.num_segments(); ++s) {
+    if (!changed.empty() && !changed[s]) continue;
+    V p0[4], p1[4];
+    for (int k = 0; k < 4; ++k) {
+      const int p = m_system.segment_points[s][k];
+      p0[k] = vec(points.col(p));
+      p1[k] = p0[k] + vec(delta.col(p));
+    }
+    m_swept[s] = model::swept_sphere(p0, p1, 0.0, 1.0);
+  }
+}
+
 bool PullThroughGuard::skip(const PairState& pair, const Eigen::VectorXd& move) const {
   if (pair.budget < 0) return false;
   for (int side = 0; side < 2; ++side)
@@ -78,12 +93,20 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
     scale = limit / largest;
     delta *= scale;
   }
-  const int n = static_cast<int>(m_pairs.size());
+  const int n = static_cast<int>(m_pairs.size()), segments = m_system.num_segments();
   std::vector<double> new_budget(n, -1.0);
   std::vector<char> hit(n, 0), retest(n, 1);
+  std::vector<char> changed;  // per segment: a point's move changed in the last round (empty: the first round, all)
+  std::vector<char> moves(segments);
   double least = 1;  // the smallest factor the halvings left on a point's move
   for (int round = 0; m_options.enabled; ++round) {
     const Eigen::VectorXd move = delta.colwise().norm().transpose();
+#pragma omp parallel for schedule(static)
+    for (int s = 0; s < segments; ++s) {
+      moves[s] = 0;
+      for (int k = 0; k < 4; ++k) moves[s] |= move[m_system.segment_points[s][k]] > 0;
+    }
+    sweep_segments(points, delta, changed);
     long tested = 0, skipped = 0, tests = 0, hits = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : tested, skipped, tests, hits)
     for (int i = 0; i < n; ++i) {
@@ -91,18 +114,18 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
       const PairState& pair = m_pairs[i];
       hit[i] = 0;
       new_budget[i] = -1.0;
-      bool still = true;
-      for (int side = 0; side < 2 && still; ++side)
-        for (int k = 0; k < 4; ++k)
-          if (move[m_system.segment_points[side == 0 ? pair.a : pair.b][k]] > 0) still = false;
-      if (still) continue;  // neither segment moves: they cannot pass through each other
+      if (!moves[pair.a] && !moves[pair.b]) continue;  // neither segment moves: they cannot pass through each other
       if (m_options.safe_bounds && skip(pair, move)) {
         ++skipped;
         continue;
       }
       ++tested;
+      // The first level from the segments' own swept spheres; only pairs that meet there are refined (the
+      // hierarchical test starts again at that level, counting it once).
       double gap;
-      if (pieces_meet(pair, points, delta, gap, tests)) {
+      const bool clean = !model::spheres_meet(m_swept[pair.a], m_swept[pair.b], gap);
+      if (clean) ++tests;
+      if (!clean && pieces_meet(pair, points, delta, gap, tests)) {
         hit[i] = 1;
         ++hits;
       } else if (gap > 0 && std::isfinite(gap)) {
@@ -157,10 +180,13 @@ double PullThroughGuard::accept(const Eigen::Matrix3Xd& points, Eigen::Matrix3Xd
     // Only the marked points' moves changed: pairs of unmarked points keep their paths and stay clean, and the
     // rest of the yarn keeps its whole step. Pairs with a marked point are tested again; their safe bounds, if
     // any, were measured on the longer moves.
+    changed.assign(segments, 0);
+#pragma omp parallel for schedule(static)
+    for (int s = 0; s < segments; ++s)
+      for (int k = 0; k < 4; ++k) changed[s] |= mark[m_system.segment_points[s][k]];
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
-      retest[i] = 0;
-      for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 4; ++k) retest[i] |= mark[m_system.segment_points[side == 0 ? m_pairs[i].a : m_pairs[i].b][k]];
+      retest[i] = changed[m_pairs[i].a] || changed[m_pairs[i].b];
       if (retest[i]) new_budget[i] = -1.0;
     }
   }

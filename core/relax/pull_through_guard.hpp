@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include "relax/guard_model.hpp"
 #include "relax/yarn_contacts.hpp"
 #include "relax/yarn_system.hpp"
 
@@ -65,6 +66,10 @@ private:
   /// The hierarchical sphere test of one pair over the step; the smallest end gap of clean pieces goes to
   /// `gap` (for the safe bound). Returns true when the finest level still meets.
   bool pieces_meet(const PairState& pair, const Eigen::Matrix3Xd& points, const Eigen::Matrix3Xd& delta, double& gap, long& tests) const;
+  /// The segments' whole spheres swept over the step (the hierarchical test's first level), into m_swept: a
+  /// segment has some twenty partners, and most pairs are clean at that level. Only the `changed` segments
+  /// (all when it is empty).
+  void sweep_segments(const Eigen::Matrix3Xd& points, const Eigen::Matrix3Xd& delta, const std::vector<char>& changed);
   bool skip(const PairState& pair, const Eigen::VectorXd& move) const;
 
   const YarnSystem& m_system;
@@ -73,6 +78,7 @@ private:
   std::vector<char> m_tested;    ///< per segment: pairs with none of their two marked are left out; empty: none left out
   std::vector<PairState> m_pairs;
   std::vector<double> m_travel;  ///< per point: total distance moved [mm]
+  std::vector<model::SweptSphere<double>> m_swept;  ///< per segment, this round's (sweep_segments)
   GuardCounters m_counters;
 };
 
