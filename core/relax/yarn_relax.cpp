@@ -347,7 +347,7 @@ double YarnForces::evaluate(const Eigen::Matrix3Xd& points, const std::vector<ch
     for (int i = m_system.point_segments_start[p]; i < m_system.point_segments_start[p + 1]; ++i) {
       const int code = m_system.point_segments[i];
       g += m_grad[code >> 2][code & 3];
-      d += m_damp[code >> 2][code & 3];
+      if (damped) d += m_damp[code >> 2][code & 3];
     }
     gradient.col(p) = eig(g);
     if (damping && damped)
