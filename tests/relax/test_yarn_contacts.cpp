@@ -16,9 +16,8 @@ using namespace skein::relax;
 using namespace skein::workflow;
 using V = model::Vec3<double>;
 
-TEST(YarnContacts, GridFindsTheSamePairsAsBruteForce) {
-  const auto yarn = skein::testing::yarn_of(skein::testing::small_piece(models::swatch(), "rib"));
-  const auto system = make_yarn_system(yarn);
+namespace {
+void expect_grid_finds_brute_forces_pairs(const YarnSystem& system) {
   for (double margin : {0.0, 0.5, 2.0}) {
     const auto grid = find_contact_pairs(system, system.points, margin);
     const auto brute = find_contact_pairs_brute_force(system, system.points, margin);
@@ -26,6 +25,12 @@ TEST(YarnContacts, GridFindsTheSamePairsAsBruteForce) {
     EXPECT_EQ(grid.start, brute.start);
     EXPECT_EQ(grid.partner, brute.partner);
   }
+}
+}  // namespace
+
+TEST(YarnContacts, GridFindsTheSamePairsAsBruteForce) {
+  const auto yarn = skein::testing::yarn_of(skein::testing::small_piece(models::swatch(), "rib"));
+  expect_grid_finds_brute_forces_pairs(make_yarn_system(yarn));
 }
 
 TEST(YarnContacts, GridFindsTheSamePairsAsBruteForceAmongLongAndShortSegments) {
@@ -48,13 +53,6 @@ TEST(YarnContacts, GridFindsTheSamePairsAsBruteForceAmongLongAndShortSegments) {
       yarn.curve_start.push_back(static_cast<int>(yarn.points.size()));
       yarn.closed.push_back(c % 4 == 0);
     }
-    const auto system = make_yarn_system(yarn);
-    for (double margin : {0.0, 0.5, 2.0}) {
-      const auto grid = find_contact_pairs(system, system.points, margin);
-      const auto brute = find_contact_pairs_brute_force(system, system.points, margin);
-      EXPECT_GT(grid.pairs(), 0);
-      EXPECT_EQ(grid.start, brute.start);
-      EXPECT_EQ(grid.partner, brute.partner);
-    }
+    expect_grid_finds_brute_forces_pairs(make_yarn_system(yarn));
   }
 }
