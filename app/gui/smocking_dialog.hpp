@@ -41,7 +41,6 @@ private:
   void show_picture();
   void set_busy(bool busy);
   void finish(const QImage& image, const QString& summary);
-  PreviewWorker m_worker;
   std::atomic<bool> m_stop{false};
   bool m_has_fabric = false;
   QComboBox* m_subdivisions = nullptr;
@@ -51,6 +50,7 @@ private:
   QDoubleSpinBox* m_gamma = nullptr;
   QComboBox* m_pull = nullptr;
   QLabel *m_picture = nullptr, *m_summary = nullptr;
+  PreviewWorker m_worker;  ///< last: joined before the members its thread reads are gone
 };
 
 }  // namespace skein::gui

@@ -48,6 +48,7 @@ std::vector<SegmentSphere> segment_spheres(const YarnSystem& system, const Eigen
 ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd& points, double margin) {
   const auto spheres = segment_spheres(system, points);
   const int n = system.num_segments();
+  if (n == 0) return {};
   const double reach = 2 * system.radius + margin;
   // The cells suit the spheres of all but the largest hundredth of the segments (a few long ones would make them
   // several times larger): two such spheres close enough have centres less than 2 R_small + reach apart, within one
@@ -56,7 +57,7 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
   for (int s = 0; s < n; ++s) radii[s] = spheres[s].radius;
   const int percentile = std::min(n - 1, n - n / 100);
   std::nth_element(radii.begin(), radii.begin() + percentile, radii.end());
-  const double small = radii[percentile], cell = 2 * small + reach;
+  const double small = radii[percentile], cell = (2 * small + reach) * (1 + 1e-9);  // a hair wider than needed: no rounding loses a pair
   const auto cell_of = [&](const Eigen::Vector3d& c) {
     return Eigen::Vector3i(static_cast<int>(std::floor(c.x() / cell)), static_cast<int>(std::floor(c.y() / cell)),
                            static_cast<int>(std::floor(c.z() / cell)));
@@ -98,12 +99,14 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
   };
   // Each unordered pair once. Two small spheres: a cell with itself, and with the 13 of its 26 neighbours that
   // follow it (the others test it from their side). A large sphere with the small ones in the cells its reach
-  // covers; two large ones with each other.
+  // covers, and with the large ones after it in order of their lowest x whose lowest x it reaches (sweep and
+  // prune: a pair close enough overlaps in x by less than the reach).
   std::vector<Eigen::Vector3i> forward;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz)
         if (std::make_tuple(dx, dy, dz) > std::make_tuple(0, 0, 0)) forward.emplace_back(dx, dy, dz);
+  std::sort(larges.begin(), larges.end(), [&](int a, int b) { return ball[a].center.x() - ball[a].radius < ball[b].center.x() - ball[b].radius; });
   const int jobs = cells + static_cast<int>(larges.size());
   std::vector<std::pair<int, int>> pairs;
 #pragma omp parallel
@@ -130,7 +133,7 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
                 if (!large[j]) test(i, j);
         }
       } else {
-        const int i = larges[job - cells];
+        const int rank = job - cells, i = larges[rank];
         const int out = static_cast<int>(std::ceil((ball[i].radius + small + reach) / cell));
         const Eigen::Vector3i home = cell_of(ball[i].center);
         for (int dx = -out; dx <= out; ++dx)
@@ -141,8 +144,9 @@ ContactPairs find_contact_pairs(const YarnSystem& system, const Eigen::Matrix3Xd
               for (int j = cell_start[other]; j < cell_start[other + 1]; ++j)
                 if (!large[j]) test(i, j);
             }
-        for (int j : larges)
-          if (j > i) test(i, j);
+        const double end = ball[i].center.x() + (ball[i].radius + reach) * (1 + 1e-9);
+        for (int k = rank + 1; k < static_cast<int>(larges.size()) && ball[larges[k]].center.x() - ball[larges[k]].radius < end; ++k)
+          test(i, larges[k]);
       }
     }
 #pragma omp critical

@@ -1068,8 +1068,10 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
   static const std::regex cast_on(R"(\bcast\s+on\s+(\d+)\s*(?:sts|stitches)\b)", std::regex::icase);
   std::smatch cast;
   const bool starred = std::any_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred; });
-  const bool shaped_repeat =
-      std::any_of(rows.begin(), rows.end(), [](const WrittenRow& r) { return r.starred && loops_made(r.repeat) != loops_taken(r.repeat); });
+  // A row with a '*' repeat that changes the count, in its repeat or its edge stitches.
+  const bool shaped_repeat = std::any_of(rows.begin(), rows.end(), [](const WrittenRow& r) {
+    return r.starred && (loops_made(r.repeat) != loops_taken(r.repeat) || loops_made(r.before) + loops_made(r.after) != r.edges());
+  });
   if (std::regex_search(description, cast, cast_on) && (!starred || shaped_repeat)) {
     const int cast_on_count = count_of(cast[1].str());
     std::vector<WrittenRow> resolved = rows;
@@ -1079,14 +1081,24 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
       if (!widen_repeat(resolved[r], below)) {
         // Shaped inside a repeat, the rows can only be a piece's: say which row does not fit.
         const WrittenRow& row = rows[r];
-        const std::string edges = row.edges() > 0 ? " less its " + std::to_string(row.edges()) + " edge stitches (" + std::to_string(below - row.edges()) + ")" : "";
+        const int width = loops_taken(row.repeat), room = below - row.edges();
+        const std::string there = (r == 0 ? "the cast-on's " : "the row below's ") + std::to_string(below) + " sts" +
+                                  (row.edges() > 0 ? " less the row's " + std::to_string(row.edges()) + " edge stitches" : "");
+        const std::string left = row.edges() > 0 ? " (" + std::to_string(std::max(room, 0)) + ")" : "";
         throw Error(source, "line " + std::to_string(row.line),
-                    "its '*' repeat takes " + std::to_string(loops_taken(row.repeat)) + " loops, which do not fill " +
-                        (r == 0 ? "the cast-on's " : "the row below's ") + std::to_string(below) + " sts" + edges + " a whole number of times");
+                    "its '*' repeat takes " + std::to_string(width) + " loops, " +
+                        (room < width ? "more than " + there + " leave" + left : "which do not fill " + there + left + " a whole number of times"));
       }
-      if (!fill_to(resolved[r], below, source)) stacks = false;
+      const bool filled = fill_to(resolved[r], below, source);
       const int taken = loops_taken(resolved[r].repeat), made = loops_made(resolved[r].repeat);
-      stacks = stacks && (r == 0 || taken == below);
+      stacks = stacks && filled && (r == 0 || taken == below);
+      if (!stacks && shaped_repeat) {
+        // Shaped inside a repeat, the rows can only be a piece's: name the row that does not take what the row below made.
+        const std::string what = filled ? "takes " + std::to_string(taken) + " loops" : "takes more loops beside its fill than that";
+        throw Error(source, "line " + std::to_string(resolved[r].line),
+                    std::string(r == 0 ? "the pattern casts on " : "the row below makes ") + std::to_string(below) + " sts, but this row " + what +
+                        " (a piece cast on and shaped inside a '*' repeat takes, row by row, the loops the row below made)");
+      }
       below = made;
       if (stacks && resolved[r].stated > 0 && resolved[r].stated != made)
         throw Error(source, "line " + std::to_string(resolved[r].line) + ", column " + std::to_string(resolved[r].stated_column),
@@ -1097,24 +1109,12 @@ Pattern parse_written_pattern(const std::string& text, const std::string& source
                         std::to_string(std::abs(*resolved[r].change)) + (*resolved[r].change >= 0 ? " increased" : " decreased"));
     }
     if (stacks) return shaped_piece(std::move(p), resolved, description, source);
-    if (shaped_repeat) {
-      // Shaped inside a repeat, the rows can only be a piece's: name the first row that does not take what the row below made.
-      int made_below = cast_on_count;
-      for (size_t r = 0; r < resolved.size(); ++r) {
-        const int taken = loops_taken(resolved[r].repeat);
-        if (r > 0 && taken != made_below)
-          throw Error(source, "line " + std::to_string(resolved[r].line),
-                      "takes " + std::to_string(taken) + " loops, but the row below (line " + std::to_string(resolved[r - 1].line) + ") makes " +
-                          std::to_string(made_below) + " (a piece cast on and shaped inside a '*' repeat takes, row by row, the loops the row below made)");
-        made_below = loops_made(resolved[r].repeat);
-      }
-    }
   }
   for (const auto& row : rows)
     if (row.partial_fill > 0)
       throw Error(source, "line " + std::to_string(row.line) + ", column " + std::to_string(row.partial_fill),
                   "'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern; beside other stitches, or 'to last N sts', "
-                  "only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
+                  "only in a shaped piece ('Cast on N sts.', each row taking the loops the row below made)");
 
   // One repeat as wide as every row's: the least common multiple of their repeats' widths. Each row is laid out
   // whole, edge stitches and all, at one width, as seen from the front; the repeat is the window of that width

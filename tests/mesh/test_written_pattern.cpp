@@ -509,7 +509,7 @@ TEST(WrittenPattern, AShapedPieceIsKnittedOnceAsWritten) {
   EXPECT_EQ(square.height(), 3);
   EXPECT_EQ(error("Row 1: K2, k to end.\nRow 2: Purl.\n"),
             "s.txt: line 1, column 12: 'knit', 'purl', 'k to end' or 'p to end' stands alone in a row of a stitch pattern; beside other stitches, or "
-            "'to last N sts', only in a shaped piece ('Cast on N sts.' and every row written whole, without a '*' repeat)");
+            "'to last N sts', only in a shaped piece ('Cast on N sts.', each row taking the loops the row below made)");
 }
 
 TEST(WrittenPattern, AShapedPieceWorksItsRepeatAsOftenAsTheRowBelowLeavesRoom) {
@@ -530,10 +530,16 @@ TEST(WrittenPattern, AShapedPieceWorksItsRepeatAsOftenAsTheRowBelowLeavesRoom) {
   EXPECT_EQ(error("Cast on 9 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: Purl.\n"),
             "s.txt: line 2: its '*' repeat takes 2 loops, which do not fill the cast-on's 9 sts a whole number of times");
   EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: P1, *p2, p2tog; rep from * to last st, p1.\n"),
-            "s.txt: line 3: its '*' repeat takes 4 loops, which do not fill the row below's 12 sts less its 2 edge stitches (10) a whole number of times");
+            "s.txt: line 3: its '*' repeat takes 4 loops, which do not fill the row below's 12 sts less the row's 2 edge stitches (10) a whole number of times");
+  EXPECT_EQ(error("Cast on 2 sts.\nRow 1 (RS): K1, *k2, m1; rep from * to last st, k1.\n"),
+            "s.txt: line 2: its '*' repeat takes 2 loops, more than the cast-on's 2 sts less the row's 2 edge stitches leave (0)");
   EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end.\nRow 2: p10.\n"),
-            "s.txt: line 3: takes 10 loops, but the row below (line 2) makes 12 (a piece cast on and shaped inside a '*' repeat takes, row by row, "
+            "s.txt: line 3: the row below makes 12 sts, but this row takes 10 loops (a piece cast on and shaped inside a '*' repeat takes, row by row, "
             "the loops the row below made)");
+  // Shaped at its edges only, beside a repeat that keeps its count: a piece too.
+  const auto edged = mesh::parse_pattern("Cast on 6 sts.\nRow 1 (RS): K1, m1, *p2, k2; rep from * to last st, m1, k1. (8 sts)\nRow 2: Purl.\n", "e.txt");
+  ASSERT_TRUE(edged.whole);
+  EXPECT_EQ(edged.rows[1].size(), 8u);
   EXPECT_EQ(error("Cast on 8 sts.\nRow 1 (RS): *K2, m1; rep from * to end. (13 sts)\nRow 2: Purl.\n"),
             "s.txt: line 2, column 41: the row makes 12 stitches, but the count written after it says 13");
   // Cast on, with repeats that keep the count: a stitch pattern, as before (the cast-on one width of it).
