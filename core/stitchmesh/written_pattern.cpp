@@ -627,11 +627,16 @@ struct WrittenRow {
   int edges() const { return loops_taken(before) + loops_taken(after); }
   /// The loops of front-view edge on the left: right-side rows are worked right to left as seen from the front.
   int left_edge() const { return loops_taken(right_side ? after : before); }
-  /// The whole row `copies` repeats wide, left to right as seen from the front.
-  std::vector<Item> front(int copies) const {
+  /// The whole row `copies` repeats wide, in the order it is worked.
+  std::vector<Item> worked(int copies) const {
     std::vector<Item> row = before;
     for (int c = 0; c < copies; ++c) row.insert(row.end(), repeat.begin(), repeat.end());
     row.insert(row.end(), after.begin(), after.end());
+    return row;
+  }
+  /// The whole row `copies` repeats wide, left to right as seen from the front.
+  std::vector<Item> front(int copies) const {
+    std::vector<Item> row = worked(copies);
     if (right_side) std::reverse(row.begin(), row.end());
     return row;
   }
@@ -804,12 +809,9 @@ bool widen_repeat(WrittenRow& row, int below) {
   if (!row.starred) return true;
   const int room = below - row.edges(), width = loops_taken(row.repeat);
   if (room < width || room % width != 0) return false;
-  std::vector<Item> whole = row.before;
-  for (int c = 0; c < room / width; ++c) whole.insert(whole.end(), row.repeat.begin(), row.repeat.end());
-  whole.insert(whole.end(), row.after.begin(), row.after.end());
+  row.repeat = row.worked(room / width);
   row.before.clear();
   row.after.clear();
-  row.repeat = std::move(whole);
   row.starred = false;
   return true;
 }
